@@ -1,0 +1,201 @@
+"""The batcert command line: a thin click layer over batcert.jobs, console and reports."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from batcert import __version__, console
+from batcert.errors import InputError
+
+EXIT_CODES = """\b
+Exit codes:
+  0  every verdict passes (or the protocol sets no limit)
+  1  at least one verdict fails
+  2  usage error (unknown option, unknown protocol name, missing file argument)
+  3  invalid input (a spec file has errors; nothing is written)"""
+
+FORMATS = ("md", "html", "json")
+
+
+class _Exit(Exception):
+    def __init__(self, code: int):
+        self.code = code
+
+
+def _guard(func):
+    """Map input problems to exit code 3 and lookup problems to 2, with one clear message."""
+    import functools
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        from batcert.runner.runner import ProtocolError
+        from batcert.specs.resolve import NotFound
+        try:
+            return func(*args, **kwargs)
+        except InputError as exc:
+            console.input_error(exc.render())
+            sys.exit(3)
+        except ProtocolError as exc:
+            console.error(str(exc))
+            sys.exit(3)
+        except NotFound as exc:
+            raise click.UsageError(str(exc)) from None
+
+    return wrapper
+
+
+def _formats(value: str) -> list[str]:
+    items = [v.strip() for v in value.split(",") if v.strip()]
+    bad = [v for v in items if v not in FORMATS]
+    if bad or not items:
+        raise click.BadParameter(f"choose from {', '.join(FORMATS)} (comma-separated), got {value!r}")
+    return items
+
+
+@click.group(epilog=EXIT_CODES, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="batcert")
+def main() -> None:
+    """Certify baseball bats against test protocols with a reduced-order impact engine."""
+
+
+@main.command(epilog=EXIT_CODES)
+@click.argument("bat")
+@click.option("--protocol", "-p", "protocols", multiple=True, required=True,
+              help="Shipped protocol id (see `batcert protocols`) or a protocol YAML path; repeat "
+                   "for several.")
+@click.option("--engine", type=click.Choice(["rigid", "flexible"]), default="flexible",
+              show_default=True, help="Impact engine tier.")
+@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
+              default=Path("reports"), show_default=True, help="Directory for the reports.")
+@click.option("--format", "formats", default="md,html,json", show_default=True,
+              help="Report formats, comma-separated: md, html, json.")
+@click.option("--no-reports", is_flag=True, help="Print the verdict only; write no files.")
+@click.option("--json", "as_json", is_flag=True, help="Print only the results JSON on stdout.")
+@_guard
+def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
+    """Run BAT (a bat YAML path or shipped bat name) under one or more protocols, print the
+    verdict and write Markdown, HTML and JSON reports."""
+    from batcert import jobs
+    fmts = _formats(formats)
+    built = jobs.load_bat_any(bat)
+    inputs = [jobs.load_protocol_any(p) for p in protocols]  # all inputs validated before running
+    results = jobs.run(built, inputs, engine)
+    written: list[list[Path]] = [[] for _ in results]
+    if not no_reports:
+        from batcert.reports.write import write_reports
+        written = [write_reports(r, out_dir, fmts) for r in results]
+    if as_json:
+        data = [r.to_dict() for r in results]
+        console.print_json(data[0] if len(data) == 1 else data)
+    else:
+        for r, paths in zip(results, written):
+            console.run_summary(r, paths)
+    sys.exit(1 if any(r.verdict == "fail" for r in results) else 0)
+
+
+@main.command(epilog=EXIT_CODES)
+@click.argument("file")
+@click.option("--pivot", type=str, default=None, help="Pivot from the knob for the mass "
+              "properties, e.g. '6 in' (default: the measured pivot, else 6 in).")
+@click.option("--json", "as_json", is_flag=True, help="Print only JSON on stdout (SI units).")
+@_guard
+def inspect(file, pivot, as_json):
+    """Show a bat's mass properties, COP and bending modes (or a ball's COR and contact time)."""
+    from batcert import jobs
+    from batcert.specs.resolve import resolve
+    from batcert.units import UnitError, parse_quantity
+    path = str(resolve("bat", file)) if not Path(file).is_file() else file
+    kind = jobs.detect_kind(path)
+    if kind == "ball":
+        from batcert.specs.ball import load_ball
+        info = jobs.inspect_ball(load_ball(path))
+        console.print_json(info) if as_json else _show_ball(info)
+        return
+    p = None
+    if pivot is not None:
+        try:
+            p = parse_quantity(pivot, "length")
+        except UnitError as exc:
+            raise click.BadParameter(str(exc), param_hint="--pivot") from None
+    info = jobs.inspect_bat(jobs.load_bat_any(path), p)
+    console.print_json(info) if as_json else _show_bat(info)
+
+
+def _show_bat(info: dict) -> None:
+    from batcert.units import show
+    g = info["geometry"]
+    console.kv_table(f"{info['name']}  ({info['construction']}, {info['material']})", [
+        ("length", str(show(info["length"], "length"))),
+        ("pivot (from knob)", str(show(info["pivot"], "length"))),
+        ("mass", f"{show(info['mass'], 'mass')}   geometry {show(g['mass'], 'mass')}"),
+        ("CG (from pivot)", f"{show(info['cg'], 'length')}   geometry {show(g['cg'], 'length')}"),
+        ("MOI about pivot", f"{show(info['moi_pivot'], 'moi', 4)}   geometry "
+                            f"{show(g['moi_pivot'], 'moi', 4)}"),
+        ("COP (from pivot)", str(show(info["cop"], "length"))),
+        ("barrel diameter", str(show(info["barrel_diameter"], "length", 4))),
+        ("reconciliation", info["reconciliation"]["description"]),
+    ])
+    if info.get("modes_hz"):
+        rows = []
+        for j, f in enumerate(info["modes_hz"][:6]):
+            nodes = info["mode_nodes"][j] if j < len(info["mode_nodes"]) else []
+            rows.append([str(j + 1), f"{f:.0f}", ", ".join(f"{z * 100:.1f}" for z in nodes)])
+        console.table("free-free bending modes", ["mode", "frequency [Hz]", "nodes [cm from knob]"],
+                      rows)
+    if info.get("barrel"):
+        console.kv_table("barrel (hoop) spring", [(k, f"{v:.4g}" if isinstance(v, float) else str(v))
+                                                  for k, v in info["barrel"].items()])
+
+
+def _show_ball(info: dict) -> None:
+    console.kv_table(info["name"], [("mass", f"{info['mass']:.4f} kg"),
+                                    ("radius", f"{info['radius'] * 1e3:.1f} mm")])
+    cols = ["speed [m/s]", "COR"]
+    keys = [k for k in ("collision_time", "contact_time", "max_compression", "peak_force")
+            if k in info]
+    cols += keys
+    rows = [[f"{v:g}", f"{e:.3f}"] + [f"{info[k][i]:.4g}" for k in keys]
+            for i, (v, e) in enumerate(zip(info["speeds"], info["cor"]))]
+    console.table("rigid-wall response", cols, rows)
+
+
+@main.command(epilog=EXIT_CODES)
+@click.option("--json", "as_json", is_flag=True, help="Print only JSON on stdout.")
+def protocols(as_json):
+    """List the shipped protocols."""
+    from batcert import jobs
+    items = jobs.list_protocols()
+    if as_json:
+        console.print_json(items)
+        return
+    console.table("shipped protocols", ["id", "title", "metric", "impact rule", "limit", "conditions"],
+                  [[p["id"], p["title"], p["metric"], p["rule"],
+                    "—" if p["limit"] is None else f"{p['limit']:g}", ", ".join(p["conditions"])]
+                   for p in items])
+
+
+@main.command(epilog=EXIT_CODES)
+@click.argument("files", nargs=-1, required=True)
+def validate(files):
+    """Check spec files (bat, ball, protocol, league); report every problem of every file."""
+    from batcert import jobs
+    from batcert.specs.resolve import NotFound
+    failed = False
+    for f in files:
+        try:
+            kind = jobs.validate_file(f)
+            console.out.print(f"ok  {f} ({kind})", markup=False)
+        except InputError as exc:
+            console.input_error(exc.render())
+            failed = True
+        except NotFound as exc:
+            console.error(f"{f}: {exc}")
+            failed = True
+    sys.exit(3 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,94 @@
+"""All terminal output goes through here: rich tables on stdout, messages on stderr.
+
+With ``--json`` only JSON is written to stdout so that scripts can parse it.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from typing import Any
+
+from rich.console import Console
+from rich.table import Table
+
+from batcert.results import RunResult
+from batcert.units import show
+
+out = Console(highlight=False, soft_wrap=True, width=None if sys.stdout.isatty() else 140)
+err = Console(stderr=True, highlight=False, soft_wrap=True)
+
+METRIC_LABEL = {"exit-speed": "exit speed", "besr": "BESR", "bpf": "BPF", "bbcor": "BBCOR",
+                "collision-efficiency": "collision efficiency e_A"}
+
+
+def print_json(data: Any) -> None:
+    sys.stdout.write(json.dumps(data, indent=2, allow_nan=False) + "\n")
+    sys.stdout.flush()
+
+
+def error(message: str) -> None:
+    err.print(f"[bold red]error:[/] {message}", markup=True, highlight=False)
+
+
+def input_error(text: str) -> None:
+    err.print("[bold red]invalid input[/]", markup=True)
+    err.print(text, markup=False)
+
+
+def note(message: str) -> None:
+    err.print(message, markup=False)
+
+
+def _fmt(value: float | None, metric: str) -> str:
+    if value is None:
+        return "—"
+    if metric == "exit-speed":
+        return str(show(value, "speed", 2))
+    return f"{value:.4f}"
+
+
+def run_summary(result: RunResult, paths: list) -> None:
+    verdict = {"pass": "[bold green]PASS[/]", "fail": "[bold red]FAIL[/]"}.get(
+        result.verdict or "", "[bold]no limit[/]")
+    limit = "" if result.limit is None else (
+        f" against limit {_fmt(result.limit, result.metric)}"
+        + (f" + {result.tolerance:g}" if result.tolerance else "")
+        + f", margin {_fmt(result.margin, result.metric) if result.metric != 'exit-speed' else show(result.margin, 'speed', 2)}")
+    out.print(f"{verdict}  {result.bat} — {result.protocol} ({result.protocol_title})", markup=True)
+    out.print(f"  {METRIC_LABEL[result.metric]} ({result.aggregate} of {len(result.conditions)} "
+              f"condition{'s' if len(result.conditions) > 1 else ''}) = "
+              f"{_fmt(result.value, result.metric)}{limit}   [engine {result.engine}, "
+              f"{result.support}]", markup=False)
+    t = Table(show_header=True, header_style="bold", box=None, pad_edge=False)
+    for col in ("condition", "pitch", "bat w1", "impact (from pivot)", "COP", "sweet spot",
+                "exit speed", "COR", "BPF", "BESR", "BBCOR", METRIC_LABEL[result.metric]):
+        t.add_column(col, justify="left" if col == "condition" else "right")
+    for c in result.conditions:
+        t.add_row(c.name, str(show(-c.pitch_speed, "speed", 1)), f"{c.bat_angular_speed:.1f} rad/s",
+                  str(show(c.impact_location, "length", 3)), f"{c.cop:.3f} m",
+                  f"{c.sweet_spot:.3f} m", str(show(c.exit_speed, "speed", 2)), f"{c.cor:.3f}",
+                  f"{c.bpf:.3f}", f"{c.besr:.3f}", f"{c.bbcor:.3f}", _fmt(c.metric_value, result.metric))
+    out.print(t)
+    for w in result.warnings:
+        out.print(f"  [yellow]warning:[/] {w}", markup=True)
+    for p in paths:
+        out.print(f"  wrote {p}", markup=False)
+
+
+def kv_table(title: str, rows: list[tuple[str, str]]) -> None:
+    t = Table(title=title, show_header=False, box=None, title_justify="left", pad_edge=False)
+    t.add_column("", style="bold")
+    t.add_column("")
+    for k, v in rows:
+        t.add_row(k, v)
+    out.print(t)
+
+
+def table(title: str, columns: list[str], rows: list[list[str]]) -> None:
+    t = Table(title=title, box=None, title_justify="left", header_style="bold", pad_edge=False)
+    for i, c in enumerate(columns):
+        t.add_column(c, justify="left" if i == 0 else "right")
+    for r in rows:
+        t.add_row(*r)
+    out.print(t)

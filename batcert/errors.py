@@ -1,0 +1,72 @@
+"""Input errors that point into the user's file: file, line, field and message.
+
+Every spec loader collects all problems of a file into one :class:`InputError` so that the user
+sees them at once (exit code 3). Nothing downstream of a failed load is run or written.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+
+@dataclass(frozen=True)
+class Problem:
+    """One thing wrong with an input file."""
+
+    file: str
+    line: int | None  # 1-based; None when the problem is not tied to a line
+    field: str  # dotted path of the offending key, e.g. "measured.mass"; "" for the whole file
+    message: str
+    column: int | None = None  # 1-based column of the offending value, for the caret
+
+    def render(self, source_lines: list[str] | None = None) -> str:
+        where = f"{self.file}:{self.line}" if self.line else self.file
+        head = f"{where}: {self.field}: {self.message}" if self.field else f"{where}: {self.message}"
+        if source_lines and self.line and 0 < self.line <= len(source_lines):
+            text = source_lines[self.line - 1].rstrip("\n")
+            gutter = f"{self.line:>5} | "
+            head += f"\n{gutter}{text}"
+            if self.column:
+                head += "\n" + " " * (len(gutter) - 2) + "| " + " " * (self.column - 1) + "^"
+        return head
+
+
+@dataclass
+class InputError(Exception):
+    """All problems found in one or more input files."""
+
+    problems: list[Problem] = field(default_factory=list)
+
+    def __str__(self) -> str:
+        return self.render()
+
+    def render(self) -> str:
+        sources: dict[str, list[str] | None] = {}
+        out = []
+        for p in self.problems:
+            if p.file not in sources:
+                try:
+                    sources[p.file] = Path(p.file).read_text(encoding="utf-8").splitlines()
+                except (OSError, UnicodeDecodeError):
+                    sources[p.file] = None
+            out.append(p.render(sources[p.file]))
+        n = len(self.problems)
+        files = sorted({p.file for p in self.problems})
+        summary = f"{n} problem{'s' if n != 1 else ''} in {', '.join(files)}"
+        return "\n".join(out) + f"\n{summary}"
+
+
+class Collector:
+    """Gathers problems for one file; raise them all at once with :meth:`raise_if_any`."""
+
+    def __init__(self, file: str | Path):
+        self.file = str(file)
+        self.problems: list[Problem] = []
+
+    def add(self, line: int | None, field_: str, message: str, column: int | None = None) -> None:
+        self.problems.append(Problem(self.file, line, field_, message, column))
+
+    def raise_if_any(self) -> None:
+        if self.problems:
+            raise InputError(list(self.problems))

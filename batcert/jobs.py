@@ -1,0 +1,142 @@
+"""What the CLI commands do, without the CLI: load inputs, run protocols, inspect bats and balls.
+
+Everything here returns plain data; the click layer (cli.py) only parses options, calls these and
+hands results to console.py and the report writers.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from batcert.physics import rigid
+from batcert.physics.engine import get_engine
+from batcert.results import RunResult
+from batcert.runner.runner import run_protocol
+from batcert.specs.ball import BallSpec, load_ball
+from batcert.specs.bat import BuiltBat, build_bat, load_bat
+from batcert.specs.protocol import ProtocolSpec, load_protocol
+from batcert.specs.resolve import resolve, shipped_names
+from batcert.specs.yamlio import load_yaml
+
+
+@dataclass(frozen=True)
+class ProtocolInputs:
+    protocol: ProtocolSpec
+    ball: BallSpec
+
+
+def load_bat_any(value: str) -> BuiltBat:
+    """A bat from a path or a shipped name (e.g. ``ash-34``), built and reconciled."""
+    return build_bat(load_bat(resolve("bat", value)))
+
+
+def load_protocol_any(value: str) -> ProtocolInputs:
+    path = resolve("protocol", value)
+    protocol = load_protocol(path)
+    ball_path = resolve("ball", protocol.values["ball"], relative_to=Path(path))
+    return ProtocolInputs(protocol, load_ball(ball_path))
+
+
+def run(bat: BuiltBat, protocols: list[ProtocolInputs], engine: str = "flexible",
+        **engine_options) -> list[RunResult]:
+    eng = get_engine(engine, **engine_options)
+    return [run_protocol(bat, p.protocol, p.ball, eng) for p in protocols]
+
+
+def inspect_bat(built: BuiltBat, pivot: float | None = None, with_modes: bool = True) -> dict:
+    """Mass properties (SI) about the pivot (default: the measured pivot, else 6 in), the COP
+    (Smith 2001 Eq. 4), and when available the free-free bending modes."""
+    m = built.model
+    if pivot is None:
+        pivot = built.measured.pivot if built.measured else 0.1524
+    moi = m.moi_about(pivot)
+    cg = m.cg_from(pivot)
+    info = {
+        "name": built.spec.name, "file": built.spec.path, "sha256": built.spec.sha256,
+        "construction": m.construction, "material": m.material.name,
+        "mass": m.mass, "length": m.length, "pivot": pivot, "cg": cg, "moi_pivot": moi,
+        "cop": float(rigid.centre_of_percussion(moi, m.mass, cg)),
+        "balance_point": m.balance_point, "moi_cg": m.moi_about(m.balance_point),
+        "barrel_diameter": m.barrel_outer_diameter(),
+        "geometry": {"mass": built.geometry.mass, "cg": built.geometry.cg_from(pivot),
+                     "moi_pivot": built.geometry.moi_about(pivot)},
+        "reconciliation": {"method": built.reconciliation.method,
+                           "description": built.reconciliation.description,
+                           "corrections": built.reconciliation.corrections},
+    }
+    if with_modes:
+        info.update(_modes_info(built, pivot))
+    return info
+
+
+def _modes_info(built: BuiltBat, pivot: float) -> dict:
+    try:
+        from batcert.physics.beam import cached_modes, mode_nodes
+    except ImportError:
+        return {}
+    modes = cached_modes(built.model, "free", pivot, 8)
+    nodes = [mode_nodes(modes, modes.n_rigid + j).tolist() for j in range(4)]
+    out: dict = {"modes_hz": modes.frequencies_hz.tolist(), "mode_nodes": nodes}
+    if built.model.construction == "hollow":
+        from batcert.physics import barrel
+        z = built.model.z_mid[np.argmax(built.model.outer_diameter)]
+        out["barrel"] = barrel.barrel_summary(built.model, z) if hasattr(barrel, "barrel_summary") else {}
+    return out
+
+
+def inspect_ball(ball: BallSpec, speeds=(1.0, 11.0, 26.0, 45.0, 58.0, 67.0)) -> dict:
+    b = ball.model
+    info: dict = {"name": b.name, "file": ball.path, "sha256": ball.sha256, "mass": b.mass,
+                  "radius": b.radius, "cor_points": [list(p) for p in zip(b.cor_speeds, b.cor_values)],
+                  "speeds": list(speeds), "cor": b.cor(np.array(speeds)).tolist()}
+    try:
+        from batcert.physics import contact
+    except ImportError:
+        return info
+    if hasattr(contact, "rigid_wall_response"):
+        info.update(contact.rigid_wall_response(b, np.array(speeds)))
+    return info
+
+
+def detect_kind(path: str) -> str:
+    """Guess a spec file's kind from its keys (bat, ball, protocol, league)."""
+    data = load_yaml(path)
+    if "conditions" in data or "metric" in data:
+        return "protocol"
+    if "rules" in data:
+        return "league"
+    if "construction" in data or "profile" in data:
+        return "bat"
+    if "cor" in data or "contact" in data:
+        return "ball"
+    return "bat"
+
+
+def validate_file(path: str) -> str:
+    """Load (and for bats, build and reconcile) a spec; raise InputError on any problem."""
+    kind = detect_kind(path)
+    if kind == "protocol":
+        spec = load_protocol(path)
+        resolve("ball", spec.values["ball"], relative_to=Path(path))
+    elif kind == "ball":
+        load_ball(path)
+    elif kind == "league":
+        from batcert.specs.league import load_league
+        load_league(path)
+    else:
+        build_bat(load_bat(path))
+    return kind
+
+
+def list_protocols() -> list[dict]:
+    out = []
+    for name, path in shipped_names("protocol").items():
+        p = load_protocol(path).values
+        out.append({"id": p["id"], "title": p["title"], "metric": p["metric"],
+                     "rule": p["impact_location"]["rule"],
+                     "limit": p["limit"]["max"] if p["limit"] else None,
+                     "conditions": [c["name"] for c in p["conditions"]], "path": str(path)})
+    return out

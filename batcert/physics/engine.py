@@ -1,0 +1,98 @@
+"""The impact-engine interface shared by the rigid and flexible tiers, and their registry.
+
+An engine solves a batch of impacts (impact locations x conditions flattened to one axis) of one
+bat and one ball in one call, vectorised over the batch.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+
+from batcert.physics.ball import BallModel
+from batcert.physics.batmodel import BatModel
+
+
+@dataclass(frozen=True)
+class ImpactBatch:
+    """Impacts to solve, all arrays of one shape (n,). Bat motion before impact is rotation about
+    the pivot at ``bat_angular_speed``; the ball moves along the normal to the bat."""
+
+    impact_location: np.ndarray  # [m from pivot]
+    pitch_speed: np.ndarray  # ball speed before impact [m/s], negative toward the bat
+    bat_angular_speed: np.ndarray  # [rad/s], positive swings the bat toward the ball
+
+    def __post_init__(self) -> None:
+        r, vp, w = np.broadcast_arrays(np.asarray(self.impact_location, float),
+                                       np.asarray(self.pitch_speed, float),
+                                       np.asarray(self.bat_angular_speed, float))
+        object.__setattr__(self, "impact_location", np.ascontiguousarray(r))
+        object.__setattr__(self, "pitch_speed", np.ascontiguousarray(vp))
+        object.__setattr__(self, "bat_angular_speed", np.ascontiguousarray(w))
+
+    @property
+    def relative_speed(self) -> np.ndarray:
+        """Normal approach speed at the impact point, w1 r - v_p [m/s]."""
+        return self.bat_angular_speed * self.impact_location - self.pitch_speed
+
+    def __len__(self) -> int:
+        return int(self.impact_location.size)
+
+
+@dataclass(frozen=True)
+class ImpactOutcome:
+    exit_speed: np.ndarray  # ball speed after impact [m/s], shape (n,)
+    bat_angular_speed_after: np.ndarray  # from Smith 2001 Eq. 1 [rad/s]
+    cor: np.ndarray  # ball-bat COR, Smith 2001 Eq. 3 [-]
+    diagnostics: dict[str, np.ndarray] = field(default_factory=dict)
+
+
+class Engine(Protocol):
+    name: str
+
+    def solve(self, bat: BatModel, ball: BallModel, pivot: float, batch: ImpactBatch,
+              support: str = "pinned") -> ImpactOutcome:
+        """Solve every impact of ``batch``; ``pivot`` is measured from the knob [m];
+        ``support`` is "pinned" (bat pinned at the pivot) or "free"."""
+        ...
+
+    def settings(self) -> dict:
+        """Engine settings recorded in the results (time step, modes, ...)."""
+        ...
+
+
+_REGISTRY: dict[str, type] = {}
+
+
+def register(name: str):
+    def deco(cls):
+        _REGISTRY[name] = cls
+        cls.name = name
+        return cls
+
+    return deco
+
+
+def get_engine(name: str, **options) -> Engine:
+    if name not in _REGISTRY:
+        # engines register on import
+        import batcert.physics.rigid  # noqa: F401
+        try:
+            import batcert.physics.flexible  # noqa: F401
+        except ImportError:
+            pass
+    if name not in _REGISTRY:
+        raise KeyError(f"unknown engine {name!r}; available: {', '.join(sorted(_REGISTRY))}")
+    return _REGISTRY[name](**options)
+
+
+def available_engines() -> list[str]:
+    get_engine.__wrapped__ if False else None
+    import batcert.physics.rigid  # noqa: F401
+    try:
+        import batcert.physics.flexible  # noqa: F401
+    except ImportError:
+        pass
+    return sorted(_REGISTRY)

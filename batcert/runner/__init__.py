@@ -1,0 +1,1 @@
+"""Protocol runner: conditions, impact-location rules, sweet-spot search, metrics and verdicts."""

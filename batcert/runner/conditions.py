@@ -1,0 +1,59 @@
+"""Test conditions: ball and bat speeds before impact as functions of the impact location."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Condition:
+    """One set-up. Speeds follow the study's signs: ``pitch_speed`` negative toward the bat."""
+
+    name: str
+    description: str
+    setup: str  # "stationary-bat" | "stationary-ball" | "pitched-and-swung"
+    pitch: float  # ball speed toward the bat [m/s] (>= 0) for explicit conditions
+    bat_angular_speed: float | None  # explicit w1 [rad/s]
+    relative_speed: float | None  # matched relative normal speed [m/s]
+
+    def speeds(self, impact_location: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Pitch speed v_p [m/s] (negative toward the bat) and bat angular speed w1 [rad/s] at
+        each impact location [m from pivot]."""
+        r = np.asarray(impact_location, dtype=float)
+        vp = np.full_like(r, -self.pitch)
+        if self.relative_speed is None:
+            return vp, np.full_like(r, self.bat_angular_speed)
+        # matched: the moving body makes the relative normal speed equal the target at r
+        return vp, (self.relative_speed - self.pitch) / r
+
+
+def _setup(pitch: float, moving_bat: bool) -> str:
+    if pitch == 0:
+        return "stationary-ball"
+    return "pitched-and-swung" if moving_bat else "stationary-bat"
+
+
+def conditions_from_spec(spec_conditions: list[dict], bat_length: float, pivot: float
+                         ) -> list[Condition]:
+    out = []
+    for c in spec_conditions:
+        if c["relative_speed"] is not None:
+            v = c["relative_speed"]
+            if c["stationary"] == "bat":
+                pitch, moving = v, False
+            elif c["stationary"] == "ball":
+                pitch, moving = 0.0, True
+            else:
+                pitch, moving = c["pitch_speed"], True
+            out.append(Condition(c["name"], c["description"] or "", _setup(pitch, moving), pitch,
+                                 None, v))
+            continue
+        w1 = c["bat_angular_speed"]
+        if w1 is None:  # linear bat speed given at a distance from the tip
+            w1 = c["bat_speed"] / (bat_length - c["bat_speed_from_tip"] - pivot)
+        pitch = c["pitch_speed"]
+        out.append(Condition(c["name"], c["description"] or "", _setup(pitch, w1 > 0), pitch, w1,
+                             None))
+    return out

@@ -1,0 +1,1 @@
+"""Input specifications: YAML files parsed, unit-converted to SI and validated."""

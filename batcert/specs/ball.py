@@ -1,0 +1,87 @@
+"""Ball specification: mass, radius, speed-dependent rigid-wall COR, contact law."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from batcert.errors import Collector
+from batcert.physics.ball import BallModel
+from batcert.specs.common import HEADER_FIELDS, sha256_of
+from batcert.specs.schema import (Field, FieldError, Kind, Schema, choice, number, quantity,
+                                  section, text, validate)
+from batcert.specs.yamlio import LocatedList, load_yaml
+from batcert.units import UnitError, parse_quantity
+
+
+def _cor_points() -> Kind:
+    def parse(value: Any, errors: Collector, path: str):
+        if not isinstance(value, LocatedList) or not value:
+            raise FieldError("expected a list of [impact speed, COR] pairs, e.g. [[85 ft/s, 0.546]]")
+        speeds, cors, ok = [], [], True
+        for i, item in enumerate(value):
+            line, col = value.item_pos[i]
+            sub = f"{path}[{i}]"
+            if not isinstance(item, LocatedList) or len(item) != 2:
+                errors.add(line, sub, "expected a pair [impact speed, COR], e.g. [85 ft/s, 0.546]", col)
+                ok = False
+                continue
+            try:
+                v = parse_quantity(item[0], "speed")
+            except UnitError as exc:
+                errors.add(line, sub, str(exc), col)
+                ok = False
+                continue
+            e = item[1]
+            if isinstance(e, bool) or not isinstance(e, (int, float)) or not 0 < e <= 1:
+                errors.add(line, sub, f"COR must be a number in (0, 1], got {e!r}", col)
+                ok = False
+                continue
+            if v <= 0 or (speeds and v <= speeds[-1]):
+                errors.add(line, sub, "impact speeds must be positive and increasing", col)
+                ok = False
+                continue
+            speeds.append(v)
+            cors.append(float(e))
+        return (tuple(speeds), tuple(cors)) if ok else None
+
+    return Kind("list of [impact speed, COR] pairs", parse, "m/s")
+
+
+CONTACT_SCHEMA = Schema("contact law", (
+    Field("model", choice("power-law-hysteresis"), "Contact law (Nathan 2000): compression "
+          "F = k1 u^alpha, restitution F = k2 u^beta, beta = (1 + alpha)/e^2 - 1.",
+          default="power-law-hysteresis"),
+    Field("k1", number(exclusive_minimum=0.0), "Compression stiffness [N/m^alpha].", required=True),
+    Field("alpha", number(minimum=1.0, maximum=3.0), "Compression exponent.", required=True),
+))
+
+BALL_SCHEMA = Schema("ball", (
+    Field("name", text(), "Ball name shown in reports.", required=True),
+    *HEADER_FIELDS,
+    Field("mass", quantity("mass", positive=True), "Ball mass.", required=True),
+    Field("radius", quantity("length", positive=True), "Ball radius.", required=True),
+    Field("cor", _cor_points(), "Rigid-wall COR at one or more impact speeds; piecewise linear "
+          "in speed between points, constant beyond the first and last.", required=True),
+    Field("contact", section(CONTACT_SCHEMA), "Contact law parameters.", required=True),
+))
+
+
+@dataclass(frozen=True)
+class BallSpec:
+    path: str
+    sha256: str
+    name: str
+    model: BallModel
+
+
+def load_ball(path: str | Path) -> BallSpec:
+    data = load_yaml(path)
+    errors = Collector(path)
+    v = validate(data, BALL_SCHEMA, errors)
+    errors.raise_if_any()
+    c = v["contact"]
+    model = BallModel(v["name"], v["mass"], v["radius"], v["cor"][0], v["cor"][1],
+                      c["model"], c["k1"], c["alpha"])
+    return BallSpec(str(path), sha256_of(path), v["name"], model)

@@ -1,0 +1,198 @@
+"""Bat specification: YAML fields, validation, and conversion to a reconciled BatModel."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from batcert.errors import Collector, InputError, Problem
+from batcert.physics.batmodel import BatModel, Material
+from batcert.physics.reconcile import (MeasuredMassProperties, ModelError, Reconciliation,
+                                       build_geometry, reconcile)
+from batcert.specs.common import HEADER_FIELDS, pairs, sha256_of
+from batcert.specs.materials import LIBRARY
+from batcert.specs.schema import (Field, FieldError, Kind, Schema, choice, lookup, number, one_of,
+                                  quantity, section, text, validate)
+from batcert.specs.yamlio import Located, load_yaml
+
+G = 9.80665  # standard gravity [m/s^2]
+
+MATERIAL_SCHEMA = Schema("inline material", (
+    Field("name", text(), "Label shown in reports.", default="custom"),
+    Field("density", quantity("density", positive=True), "Density.", required=True),
+    Field("youngs_modulus", quantity("modulus", positive=True), "Young's modulus along the bat.",
+          required=True),
+    Field("shear_modulus", quantity("modulus", positive=True), "Shear modulus (transverse shear).",
+          required=True),
+    Field("poisson_ratio", number(minimum=0.0, maximum=0.5), "Poisson's ratio (hoop stiffness of "
+          "hollow barrels).", default=0.3),
+    Field("loss_factor", number(minimum=0.0, maximum=0.5), "Structural loss factor eta; modal "
+          "damping ratio eta/2.", default=0.0),
+))
+
+
+def _material_kind() -> Kind:
+    def parse(value: Any, errors: Collector, path: str):
+        if isinstance(value, str):
+            if value not in LIBRARY:
+                import difflib
+                close = difflib.get_close_matches(value, list(LIBRARY), n=1, cutoff=0.5)
+                hint = f"; did you mean '{close[0]}'?" if close else ""
+                raise FieldError(f"unknown material {value!r} (library: {', '.join(LIBRARY)}){hint}")
+            return LIBRARY[value][0]
+        if isinstance(value, Located):
+            v = validate(value, MATERIAL_SCHEMA, errors, path)
+            if v is None or any(v[k] is None for k in ("density", "youngs_modulus", "shear_modulus")):
+                return None
+            return Material(v["name"], v["density"], v["youngs_modulus"], v["shear_modulus"],
+                            v["poisson_ratio"], v["loss_factor"])
+        raise FieldError(f"expected a library name ({', '.join(LIBRARY)}) or a mapping")
+
+    return Kind("library name (" + ", ".join(f"`{k}`" for k in LIBRARY) + ") or inline mapping "
+                "(density, youngs_modulus, shear_modulus, poisson_ratio, loss_factor)", parse)
+
+
+def _check_measured(v: dict, data: Located, errors: Collector, path: str) -> None:
+    line = data.line
+    if v["balance_point"] is not None and v["cg"] is not None:
+        errors.add(lookup(data, "cg")[0], f"{path}.cg", "give either balance_point (from the knob) "
+                   "or cg (from the pivot), not both")
+    given = [k for k in ("moi", "radius_of_gyration", "pendulum_period") if v[k] is not None]
+    if len(given) > 1:
+        errors.add(lookup(data, given[1])[0], f"{path}.{given[1]}",
+                   f"give only one of moi, radius_of_gyration, pendulum_period (got {', '.join(given)})")
+    if given and v["balance_point"] is None and v["cg"] is None:
+        errors.add(line, path, f"{given[0]} needs the CG: add balance_point or cg")
+    del line
+
+
+MEASURED_SCHEMA = Schema("measured mass properties", (
+    Field("pivot", quantity("length", minimum=0.0), "Pivot of the MOI (and origin of `cg`), "
+          "from the knob end.", default=0.1524),
+    Field("mass", quantity("mass", positive=True), "Measured mass.", required=True),
+    Field("balance_point", quantity("length", positive=True), "CG from the knob end (F2398 "
+          "balance point)."),
+    Field("cg", quantity("length", positive=True), "CG from the pivot (alternative to "
+          "balance_point)."),
+    Field("moi", quantity("moi", positive=True), "Moment of inertia about the pivot."),
+    Field("radius_of_gyration", quantity("length", positive=True), "Radius of gyration about the "
+          "CG (Nathan 2000 Table I form); alternative to moi."),
+    Field("pendulum_period", quantity("time", positive=True), "ASTM F2398 pendulum period about "
+          "the pivot; I = M g (BP - pivot) T^2 / (4 pi^2). Alternative to moi."),
+    Field("first_bending_frequency", quantity("frequency", positive=True), "Measured free-free "
+          "first bending frequency (calibrates E in the flexible engine)."),
+), checks=(_check_measured,))
+
+
+def _check_bat(v: dict, data: Located, errors: Collector, path: str) -> None:
+    if v["construction"] == "hollow" and v["wall"] is None:
+        errors.add(data.line, "wall", "hollow bats need a wall thickness (`wall: 2.5 mm` or a list "
+                   "of [position, thickness] pairs)")
+    if v["construction"] == "solid" and v["wall"] is not None:
+        errors.add(lookup(data, "wall")[0], "wall", "a solid bat has no wall; remove `wall` or set "
+                   "`construction: hollow`")
+    z, d = v["profile"]
+    if z[-1] > v["length"] * (1 + 1e-9) or z[0] < 0:
+        errors.add(lookup(data, "profile")[0], "profile", f"stations must lie between the knob "
+                   f"(0) and the tip ({v['length'] / 0.0254:.2f} in)")
+
+
+BAT_SCHEMA = Schema("bat", (
+    Field("name", text(), "Bat name shown in reports.", required=True),
+    *HEADER_FIELDS,
+    Field("construction", choice("solid", "hollow"), "Solid (wood) or hollow (metal, composite) "
+          "barrel.", required=True),
+    Field("length", quantity("length", positive=True), "Overall length, knob end to tip.",
+          required=True),
+    Field("profile", pairs("length", "length", "position from knob", "outer diameter", min_items=2),
+          "Outer diameter at stations from the knob end, interpolated linearly; held constant "
+          "beyond the first and last station.", required=True),
+    Field("wall", one_of(quantity("length", positive=True),
+                         pairs("length", "length", "position from knob", "wall thickness"),
+                         describe="a thickness or a list of [position, thickness] pairs"),
+          "Wall thickness of a hollow bat: constant, or per station (interpolated)."),
+    Field("material", _material_kind(), "Material: library name or inline properties.",
+          required=True),
+    Field("knob_mass", quantity("mass", minimum=0.0), "Extra mass at the knob end.", default=0.0),
+    Field("end_cap_mass", quantity("mass", minimum=0.0), "Extra mass at the tip (end cap).",
+          default=0.0),
+    Field("shear_correction", number(exclusive_minimum=0.0, maximum=1.5), "Timoshenko shear "
+          "coefficient kappa; default 6(1+nu)/(7+6nu) solid, 2(1+nu)/(4+3nu) hollow."),
+    Field("barrel_effective_width", quantity("length", positive=True), "Axial width of barrel "
+          "shell taking part in hoop flexing (hollow bats); default the barrel's outer diameter."),
+    Field("slice_length", quantity("length", positive=True, maximum=0.02), "Beam slice length.",
+          default=0.01),
+    Field("measured", section(MEASURED_SCHEMA), "Measured mass properties; the model is "
+          "reconciled to match them exactly."),
+    Field("reconcile", choice("density-profile", "point-masses", "none"), "How the model is "
+          "corrected to the measured values (docs/inputs.md).", default="density-profile"),
+), checks=(_check_bat,))
+
+
+@dataclass(frozen=True)
+class BatSpec:
+    path: str
+    sha256: str
+    name: str
+    values: dict  # validated SI values by field name
+
+    @property
+    def length(self) -> float:
+        return self.values["length"]
+
+
+@dataclass(frozen=True)
+class BuiltBat:
+    spec: BatSpec
+    geometry: BatModel  # profile x material, before reconciliation
+    model: BatModel  # reconciled
+    reconciliation: Reconciliation
+    measured: MeasuredMassProperties | None
+    first_bending_frequency: float | None
+
+
+def load_bat(path: str | Path) -> BatSpec:
+    data = load_yaml(path)
+    errors = Collector(path)
+    values = validate(data, BAT_SCHEMA, errors)
+    errors.raise_if_any()
+    return BatSpec(str(path), sha256_of(path), values["name"], values)
+
+
+def measured_properties(v: dict) -> MeasuredMassProperties:
+    p = v["pivot"]
+    bp = v["balance_point"] if v["balance_point"] is not None else (
+        p + v["cg"] if v["cg"] is not None else None)
+    moi = v["moi"]
+    if v["radius_of_gyration"] is not None:
+        moi = v["mass"] * (v["radius_of_gyration"] ** 2 + (bp - p) ** 2)
+    if v["pendulum_period"] is not None:
+        moi = v["mass"] * G * (bp - p) * v["pendulum_period"] ** 2 / (4 * math.pi**2)
+    return MeasuredMassProperties(v["mass"], bp, moi, p)
+
+
+def build_bat(spec: BatSpec) -> BuiltBat:
+    """Geometry and reconciliation; model errors are reported against the spec file's lines."""
+    v = spec.values
+    try:
+        wall_z = wall_t = None
+        if v["construction"] == "hollow":
+            if isinstance(v["wall"], tuple):
+                wall_z, wall_t = v["wall"]
+            else:
+                wall_z, wall_t = (0.0,), (v["wall"],)
+        geometry = build_geometry(
+            v["name"], v["construction"], v["length"], v["profile"][0], v["profile"][1],
+            v["material"], wall_z, wall_t, v["knob_mass"], v["end_cap_mass"], v["shear_correction"],
+            v["slice_length"], v["barrel_effective_width"])
+        meas = measured_properties(v["measured"]) if v["measured"] else None
+        model, rec = reconcile(geometry, meas, v["reconcile"])
+    except ModelError as exc:
+        data = load_yaml(spec.path)
+        keys = exc.field.split(".")
+        line = lookup(data, *keys)[0]
+        raise InputError([Problem(spec.path, line, exc.field, str(exc))]) from None
+    freq = v["measured"]["first_bending_frequency"] if v["measured"] else None
+    return BuiltBat(spec, geometry, model, rec, meas, freq)

@@ -1,0 +1,62 @@
+"""Find shipped protocols, balls, leagues and example bats by name, from a checkout or a wheel.
+
+In a wheel the shipped YAML lives in ``batcert/shipped/`` (copied there at build time, see
+pyproject.toml); in a source checkout it is read from the top-level ``protocols/`` and ``bats/``.
+A value that names an existing file (or ends in .yaml/.yml) is taken as a path.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+_PACKAGE = Path(__file__).resolve().parents[1]
+_CHECKOUT = _PACKAGE.parent
+
+KINDS = {
+    "protocol": ("protocols",),
+    "ball": ("protocols/balls",),
+    "league": ("protocols/leagues",),
+    "bat": ("bats",),
+}
+
+
+def shipped_dirs(kind: str) -> list[Path]:
+    out = []
+    for sub in KINDS[kind]:
+        for root in (_PACKAGE / "shipped", _CHECKOUT):
+            d = root / sub
+            if d.is_dir() and d not in out:
+                out.append(d)
+    return out
+
+
+def shipped_names(kind: str) -> dict[str, Path]:
+    names: dict[str, Path] = {}
+    for d in shipped_dirs(kind):
+        for p in sorted(d.glob("*.yaml")):
+            names.setdefault(p.stem, p)
+    return names
+
+
+class NotFound(LookupError):
+    pass
+
+
+def resolve(kind: str, value: str, relative_to: Path | None = None) -> Path:
+    """Path of a shipped name or a user path; raise :class:`NotFound` with the choices."""
+    candidate = Path(value)
+    if relative_to is not None and not candidate.is_absolute():
+        rel = relative_to.parent / candidate
+        if rel.is_file():
+            return rel
+    if candidate.is_file():
+        return candidate
+    names = shipped_names(kind)
+    if value in names:
+        return names[value]
+    if candidate.suffix in (".yaml", ".yml") or "/" in value:
+        raise NotFound(f"{kind} file not found: {value}")
+    import difflib
+    close = difflib.get_close_matches(value, list(names), n=1, cutoff=0.5)
+    hint = f"; did you mean '{close[0]}'?" if close else ""
+    raise NotFound(f"unknown {kind} {value!r} (shipped: {', '.join(names) or 'none'}){hint}")

@@ -1,0 +1,131 @@
+"""Units at the edges: parse lab-style quantities to SI floats once, format SI + US for display.
+
+Everything inside batcert (physics, results) is SI floats. This module is the only place that
+knows unit strings. Parsing uses pint; the registry is created lazily on first use.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from functools import lru_cache
+
+# Dimension name -> (pint dimensionality text, SI unit, US customary display unit, example)
+DIMENSIONS: dict[str, tuple[str, str, str | None, str]] = {
+    "length": ("[length]", "m", "in", "34 in"),
+    "mass": ("[mass]", "kg", "oz", "31 oz"),
+    "moi": ("[mass] * [length] ** 2", "kg*m^2", "oz*in^2", "12000 oz*in^2"),
+    "speed": ("[length] / [time]", "m/s", "mph", "70 mph"),
+    "angular_speed": ("1 / [time]", "rad/s", "rpm", "53 rad/s"),
+    "density": ("[mass] / [length] ** 3", "kg/m^3", "lb/in^3", "649 kg/m^3"),
+    "modulus": ("[mass] / [length] / [time] ** 2", "Pa", "psi", "71.7 GPa"),
+    "stiffness_k1": ("", "N/m^alpha", None, "6.53e7"),
+    "time": ("[time]", "s", None, "0.5 s"),
+    "frequency": ("1 / [time]", "Hz", None, "165 Hz"),
+}
+
+
+_NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([^\d.+-].*)?$")
+
+
+class UnitError(ValueError):
+    """A quantity that could not be parsed or has the wrong dimension."""
+
+
+@lru_cache(maxsize=1)
+def registry():
+    import pint
+
+    ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    return ureg
+
+
+def parse_quantity(value: object, dimension: str) -> float:
+    """Convert ``value`` (e.g. ``"34 in"``) to a float in the SI unit of ``dimension``.
+
+    Bare numbers are refused for dimensioned quantities: a lab file must say its unit.
+    """
+    dim_text, si_unit, _, example = DIMENSIONS[dimension]
+    if isinstance(value, bool) or value is None:
+        raise UnitError(f"expected a {dimension.replace('_', ' ')} with a unit, e.g. '{example}'")
+    if isinstance(value, (int, float)):
+        raise UnitError(f"a unit is required (e.g. '{example}'), got the bare number {value}")
+    if not isinstance(value, str):
+        raise UnitError(f"expected a {dimension.replace('_', ' ')} with a unit, e.g. '{example}'")
+    import pint
+
+    ureg = registry()
+    match = _NUMBER_UNIT.match(value)
+    if not match:
+        raise UnitError(f"cannot read {value!r}: expected a number then a unit, e.g. '{example}'")
+    number, unit_text = float(match.group(1)), (match.group(2) or "").strip()
+    if not unit_text:
+        raise UnitError(f"a unit is required (e.g. '{example}'), got {value!r}")
+    try:
+        unit = ureg.parse_units(unit_text)
+    except pint.errors.UndefinedUnitError as exc:
+        raise UnitError(f"cannot read {value!r}: unknown unit {exc.unit_names[0]!r} "
+                        f"(e.g. '{example}')") from None
+    except (pint.errors.DefinitionSyntaxError, ValueError, AttributeError, TypeError,
+            SyntaxError, AssertionError):
+        raise UnitError(f"cannot read {value!r}: not a unit expression (e.g. '{example}')") from None
+    q = ureg.Quantity(number, unit)
+    # angular speed: pint treats radian as dimensionless, so rad/s, rpm and 1/s all match 1/[time]
+    try:
+        return float(q.to(si_unit).magnitude)
+    except pint.errors.DimensionalityError:
+        raise UnitError(
+            f"{value!r} is not a {dimension.replace('_', ' ')} (expected units like '{example}')"
+        ) from None
+
+
+@lru_cache(maxsize=64)
+def _factor(si_unit: str, unit: str) -> float:
+    ureg = registry()
+    return float(ureg.Quantity(1.0, si_unit).to(unit).magnitude)
+
+
+# Conversion factors for display, so reports need not import pint (computed from Units section
+# of REFERENCE-DATA.md: 1 in = 0.0254 m, 1 mph = 0.44704 m/s, 1 oz = 28.3495 g).
+_US: dict[str, tuple[str, float]] = {
+    "length": ("in", 1 / 0.0254),
+    "mass": ("oz", 1 / 0.028349523125),
+    "moi": ("oz*in^2", 1 / (0.028349523125 * 0.0254**2)),
+    "speed": ("mph", 1 / 0.44704),
+    "angular_speed": ("rpm", 60 / (2 * 3.141592653589793)),
+}
+_SI_LABEL = {"length": "m", "mass": "kg", "moi": "kg m²", "speed": "m/s", "angular_speed": "rad/s"}
+
+
+@dataclass(frozen=True)
+class Display:
+    si: str
+    us: str | None
+
+    def __str__(self) -> str:
+        return f"{self.si} ({self.us})" if self.us else self.si
+
+
+def to_us(value_si: float, dimension: str) -> float:
+    """SI value -> US customary value for display."""
+    return value_si * _US[dimension][1]
+
+
+def us_unit(dimension: str) -> str:
+    return _US[dimension][0]
+
+
+def si_unit(dimension: str) -> str:
+    return _SI_LABEL[dimension]
+
+
+def show(value_si: float | None, dimension: str, digits: int = 3) -> Display:
+    """Format an SI value with its US customary equivalent, e.g. ``0.860 m (33.86 in)``."""
+    if value_si is None:
+        return Display("—", None)
+    si = f"{value_si:.{digits}f} {_SI_LABEL[dimension]}"
+    if dimension in _US:
+        unit, factor = _US[dimension]
+        us_digits = 0 if dimension == "moi" else 2 if dimension in ("length", "mass") else 1
+        return Display(si, f"{value_si * factor:,.{us_digits}f} {unit}")
+    return Display(si, None)

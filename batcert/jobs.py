@@ -43,7 +43,12 @@ def load_protocol_any(value: str) -> ProtocolInputs:
 def run(bat: BuiltBat, protocols: list[ProtocolInputs], engine: str = "flexible",
         **engine_options) -> list[RunResult]:
     eng = get_engine(engine, **engine_options)
-    return [run_protocol(bat, p.protocol, p.ball, eng) for p in protocols]
+    results = []
+    for p in protocols:
+        result = run_protocol(bat, p.protocol, p.ball, eng)
+        result.extras.update(_modes_info(bat, p.protocol.values["pivot"]))
+        results.append(result)
+    return results
 
 
 def inspect_bat(built: BuiltBat, pivot: float | None = None, with_modes: bool = True) -> dict:
@@ -73,17 +78,26 @@ def inspect_bat(built: BuiltBat, pivot: float | None = None, with_modes: bool = 
 
 
 def _modes_info(built: BuiltBat, pivot: float) -> dict:
-    try:
-        from batcert.physics.beam import cached_modes, mode_nodes
-    except ImportError:
-        return {}
+    """Free-free bending frequencies [Hz] and node positions [m from knob] of the first modes;
+    for hollow bats the barrel's hoop frequency and local spring at the largest diameter."""
+    from batcert.physics.beam import cached_modes, mode_nodes
     modes = cached_modes(built.model, "free", pivot, 8)
-    nodes = [mode_nodes(modes, modes.n_rigid + j).tolist() for j in range(4)]
-    out: dict = {"modes_hz": modes.frequencies_hz.tolist(), "mode_nodes": nodes}
-    if built.model.construction == "hollow":
+    out: dict = {"modes_hz": modes.frequencies_hz.tolist(),
+                 "mode_nodes": [mode_nodes(modes, j).tolist() for j in (1, 2, 3, 4)]}
+    m = built.model
+    if m.construction == "hollow":
         from batcert.physics import barrel
-        z = built.model.z_mid[np.argmax(built.model.outer_diameter)]
-        out["barrel"] = barrel.barrel_summary(built.model, z) if hasattr(barrel, "barrel_summary") else {}
+        in_barrel = np.flatnonzero(m.outer_diameter >= 0.99 * m.outer_diameter.max())
+        i = int(in_barrel[in_barrel.size // 2])  # middle of the full-diameter barrel
+        z = float(m.z_mid[i])
+        k, mass = barrel.barrel_spring(0.5 * m.outer_diameter[i], m.wall_thickness[i], m.material,
+                                       m.barrel_effective_width)
+        out["barrel"] = {"position": z, "outer_diameter": float(m.outer_diameter[i]),
+                         "wall": float(m.wall_thickness[i]),
+                         "effective_width": m.barrel_effective_width,
+                         "hoop_frequency_hz": float(barrel.hoop_frequency(
+                             0.5 * m.outer_diameter[i], m.wall_thickness[i], m.material)),
+                         "stiffness": float(k), "mass": float(mass)}
     return out
 
 

@@ -34,6 +34,7 @@ from batcert.physics.batmodel import BatModel, Material
 
 WEIGHT_BOUNDS = (0.5, 2.0)
 MAX_POINT_MASS_FRACTION = 0.25
+POINT_MASS_ROUNDING = 1e-6  # [kg]; smaller negative point masses are rounding
 
 
 class ModelError(ValueError):
@@ -179,12 +180,10 @@ def reconcile(bat: BatModel, meas: MeasuredMassProperties | None, method: str = 
                          "the material density, the wall and the measured values")
     model = replace(bat, linear_density=bat.linear_density * weight,
                     rotary_inertia=bat.rotary_inertia * weight)
-    k = bat.length
-    corr = {"density_weight_knob": float(np.polyval(coef[::-1], 0.0)),
-            "density_weight_tip": float(np.polyval(coef[::-1], 1.0)),
+    # knob and tip weights at the end slices' centres, the points the bounds were checked at
+    corr = {"density_weight_knob": float(weight[0]), "density_weight_tip": float(weight[-1]),
             "density_weight_min": lo, "density_weight_max": hi,
             "mass_change": model.mass - bat.mass}
-    del k
     desc = (f"density-profile: slice density x {lo:.3f}-{hi:.3f} (smooth quadratic weight, "
             f"knob {corr['density_weight_knob']:.3f}, tip {corr['density_weight_tip']:.3f}); "
             f"mass change {corr['mass_change'] * 1e3:+.1f} g")
@@ -200,11 +199,11 @@ def _point_masses(bat: BatModel, meas: MeasuredMassProperties, target: np.ndarra
     if not WEIGHT_BOUNDS[0] <= scale <= WEIGHT_BOUNDS[1]:
         problems.append(f"density scale {scale:.2f} (allowed {WEIGHT_BOUNDS[0]}-{WEIGHT_BOUNDS[1]})")
     for label, m in (("knob", m_knob), ("end-cap", m_cap)):
-        if m < 0:
+        if m < -POINT_MASS_ROUNDING:  # a zero mass may come out as -1e-17 from the solve
             problems.append(f"a negative {label} mass ({m * 1e3:.0f} g)")
         elif m > MAX_POINT_MASS_FRACTION * meas.mass:
-            problems.append(f"a {label} mass of {m * 1e3:.0f} g (over {MAX_POINT_MASS_FRACTION:.0%} "
-                            "of the bat)")
+            problems.append(f"{'an' if label[0] in 'aeiou' else 'a'} {label} mass of "
+                            f"{m * 1e3:.0f} g (over {MAX_POINT_MASS_FRACTION:.0%} of the bat)")
     if problems:
         raise ModelError("measured", "cannot reconcile with point masses: it would need "
                          + " and ".join(problems) + "; try `reconcile: density-profile` or check "

@@ -51,7 +51,8 @@ def _material_kind() -> Kind:
         raise FieldError(f"expected a library name ({', '.join(LIBRARY)}) or a mapping")
 
     return Kind("library name (" + ", ".join(f"`{k}`" for k in LIBRARY) + ") or inline mapping "
-                "(density, youngs_modulus, shear_modulus, poisson_ratio, loss_factor)", parse)
+                "(density, youngs_modulus, shear_modulus, poisson_ratio, loss_factor)", parse,
+                schema=MATERIAL_SCHEMA)
 
 
 def _check_measured(v: dict, data: Located, errors: Collector, path: str) -> None:
@@ -88,8 +89,8 @@ MEASURED_SCHEMA = Schema("measured mass properties", (
 
 def _check_bat(v: dict, data: Located, errors: Collector, path: str) -> None:
     if v["construction"] == "hollow" and v["wall"] is None:
-        errors.add(data.line, "wall", "hollow bats need a wall thickness (`wall: 2.5 mm` or a list "
-                   "of [position, thickness] pairs)")
+        errors.add(lookup(data, "construction")[0], "wall", "hollow bats need a wall thickness "
+                   "(`wall: 2.5 mm` or a list of [position, thickness] pairs)")
     if v["construction"] == "solid" and v["wall"] is not None:
         errors.add(lookup(data, "wall")[0], "wall", "a solid bat has no wall; remove `wall` or set "
                    "`construction: hollow`")
@@ -127,7 +128,7 @@ BAT_SCHEMA = Schema("bat", (
     Field("measured", section(MEASURED_SCHEMA), "Measured mass properties; the model is "
           "reconciled to match them exactly."),
     Field("reconcile", choice("density-profile", "point-masses", "none"), "How the model is "
-          "corrected to the measured values (docs/inputs.md).", default="density-profile"),
+          "corrected to the measured values (docs/reconciliation.md).", default="density-profile"),
 ), checks=(_check_bat,))
 
 

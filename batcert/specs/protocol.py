@@ -100,6 +100,36 @@ LIMIT_SCHEMA = Schema("limit", (
     Field("source", text(), "Where the limit comes from."),
 ))
 
+
+def _is_plain_number(value: object) -> bool:
+    if isinstance(value, bool):
+        return False
+    if isinstance(value, (int, float)):
+        return True
+    try:
+        float(str(value))
+    except ValueError:
+        return False
+    return True
+
+
+def _check_limit(v: dict, data: Located, errors: Collector, path: str) -> None:
+    """An exit-speed limit is a speed with its unit; the other metrics' limits are numbers."""
+    if v["limit"] is None or not isinstance(data.get("limit"), Located):
+        return
+    raw = data["limit"]
+    for key in ("max", "tolerance"):
+        if raw.get(key) is None:
+            continue
+        plain = _is_plain_number(raw[key])
+        if v["metric"] == "exit-speed" and plain:
+            errors.add(lookup(data, "limit", key)[0], f"limit.{key}", "the exit-speed limit is a "
+                       f"speed: give its unit, e.g. '97 mph', got {raw[key]!r}")
+        elif v["metric"] != "exit-speed" and not plain:
+            errors.add(lookup(data, "limit", key)[0], f"limit.{key}", f"{v['metric']} is "
+                       f"dimensionless: give a plain number, got {raw[key]!r}")
+
+
 PROTOCOL_SCHEMA = Schema("protocol", (
     Field("id", text(), "Short identifier (`--protocol ID`).", required=True),
     Field("title", text(), "Full title.", required=True),
@@ -119,7 +149,7 @@ PROTOCOL_SCHEMA = Schema("protocol", (
     Field("metric", choice(*METRICS), "Performance metric.", required=True),
     Field("aggregate", choice("mean", "min", "max"), "How conditions combine.", default="mean"),
     Field("limit", section(LIMIT_SCHEMA), "Pass/fail limit (omit for no verdict)."),
-))
+), checks=(_check_limit,))
 
 
 @dataclass(frozen=True)

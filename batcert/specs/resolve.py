@@ -17,6 +17,7 @@ KINDS = {
     "ball": ("protocols/balls",),
     "league": ("protocols/leagues",),
     "bat": ("bats",),
+    "study": ("protocols/studies",),
 }
 
 

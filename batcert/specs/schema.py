@@ -30,6 +30,7 @@ class Kind:
     describe: str
     parse: Callable[[Any, Collector, str], Any]
     unit: str = ""
+    schema: Schema | None = None  # the nested schema of a section (for the generated docs)
 
 
 @dataclass(frozen=True)
@@ -176,7 +177,7 @@ def section(schema: Schema) -> Kind:
             raise FieldError(f"expected a mapping with fields {', '.join(schema.names())}")
         return validate(value, schema, errors, path)
 
-    return Kind(f"mapping: {schema.title}", parse)
+    return Kind(f"mapping: {schema.title}", parse, schema=schema)
 
 
 def list_of(item: Kind, *, min_items: int = 0, describe: str | None = None) -> Kind:
@@ -196,7 +197,7 @@ def list_of(item: Kind, *, min_items: int = 0, describe: str | None = None) -> K
                 out.append(None)
         return out
 
-    return Kind(describe or f"list of {item.describe}", parse, item.unit)
+    return Kind(describe or f"list of {item.describe}", parse, item.unit, item.schema)
 
 
 def one_of(*kinds: Kind, describe: str) -> Kind:
@@ -215,17 +216,25 @@ def one_of(*kinds: Kind, describe: str) -> Kind:
             return result
         raise FieldError(f"expected {describe}: {messages[0]}")
 
-    return Kind(describe, parse)
+    units = {k.unit for k in kinds}  # a unit for the docs only when every alternative shares it
+    return Kind(describe, parse, units.pop() if len(units) == 1 else "")
 
 
 def lookup(data: Located, *keys: str | int) -> tuple[int | None, int | None]:
-    """Line and column of a nested value, for cross-field checks."""
+    """Line and column of a nested key (or list item), for cross-field checks.
+
+    A mapping key gives the key's own position, so that a block value (``measured:`` followed by
+    indented fields) is reported on the line that names it rather than on its first sub-field.
+    """
     node: Any = data
     pos: tuple[int | None, int | None] = (getattr(data, "line", None), None)
     for k in keys:
         if isinstance(node, (Located, LocatedList)):
             try:
-                pos = where(node, k)
+                if isinstance(node, Located) and isinstance(k, str) and k in node.key_pos:
+                    pos = node.key_pos[k]
+                else:
+                    pos = where(node, k)
                 node = node[k]
             except (KeyError, IndexError, TypeError):
                 break

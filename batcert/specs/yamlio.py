@@ -90,6 +90,9 @@ def load_yaml_text(text: str, file: str) -> Located:
         line = mark.line + 1 if mark else None
         col = mark.column + 1 if mark else None
         problem = exc.problem or str(exc)
+        ctx = exc.context_mark
+        if exc.context and ctx is not None and ctx.line + 1 != line:  # e.g. an unclosed bracket
+            problem += f" ({exc.context} started on line {ctx.line + 1})"
         raise InputError([Problem(file, line, "", f"malformed YAML: {problem}", col)]) from None
     except yaml.YAMLError as exc:
         raise InputError([Problem(file, None, "", f"malformed YAML: {exc}")]) from None

@@ -27,6 +27,17 @@ and ``omega_n^2 = k / m`` gives the classical inextensional ring frequency (Love
 
     ``omega_n = (t / R^2) sqrt(E' / (12 rho)) n (n^2 - 1) / sqrt(n^2 + 1)``.
 
+Axial extent (the barrel's (n = 2, m = 1) hoop mode). The lowest hoop mode of a real barrel is
+the shell mode with two circumferential waves and one axial half-wave over the barrel (Russell,
+"Acoustics and vibration of baseball and softball bats", Acoustics Today 13(4), 2017): radial
+displacement ``A cos(2 theta) sin(pi x / L_b)`` over the full-diameter barrel of length ``L_b``.
+Integrating the energies above along the barrel, with ``A`` the displacement at the axial position
+``x`` of the impact, gives the same spring-mass with ``b = L_b / 2`` divided by
+``sin^2(pi x / L_b)``: stiffest and heaviest (no trampoline) at the barrel's ends, most compliant
+at its middle. So the default effective width is half the barrel length
+(:func:`default_effective_width`), and :func:`barrel_spring_at` applies the axial shape. Both the
+width and the shape follow from the geometry; nothing is fitted to a performance result.
+
 Limitations: only the n = 2 term is kept (for a point load on a free ring the n >= 3 terms add
 ``9 sum_{n>=3} (n^2 - 1)^-2 = 21 %`` to the static compliance, so ``k`` is an upper bound);
 the ring has no axial coupling with the rest of the barrel, so ``omega_2`` is a lower bound on a
@@ -127,6 +138,48 @@ def barrel_spring(outer_radius, wall, material: Material, effective_width):
     return stiffness, mass
 
 
+_BARREL_DIAMETER_FRACTION = 0.99  # slices this close to the largest diameter form the barrel
+_MIN_AXIAL_SHAPE = 0.05  # below this sin(pi x / L_b) the hoop mode is left out (k, m -> inf)
+
+
+def barrel_region(bat: BatModel) -> tuple[float, float]:
+    """Start and end of the full-diameter hollow barrel, from the knob [m].
+
+    The contiguous run of hollow slices whose outer diameter is within 1 % of the largest,
+    around the largest; ``(nan, nan)`` for a solid bat.
+    """
+    d = np.asarray(bat.outer_diameter, dtype=float)
+    hollow = np.asarray(bat.inner_diameter, dtype=float) > 0
+    if bat.construction != "hollow" or not np.any(hollow):
+        return float("nan"), float("nan")
+    full = hollow & (d >= _BARREL_DIAMETER_FRACTION * d[hollow].max())
+    i = int(np.argmax(np.where(hollow, d, -np.inf)))
+    lo = i
+    while lo > 0 and full[lo - 1]:
+        lo -= 1
+    hi = i
+    while hi < d.size - 1 and full[hi + 1]:
+        hi += 1
+    return float(bat.z_edges[lo]), float(bat.z_edges[hi + 1])
+
+
+def default_effective_width(bat: BatModel) -> float | None:
+    """Half the full-diameter barrel length [m] (the (2, 1) hoop mode's modal width; module
+    notes), or None for a solid bat."""
+    z0, z1 = barrel_region(bat)
+    return None if not np.isfinite(z0) else 0.5 * (z1 - z0)
+
+
+def axial_shape(bat: BatModel, z_impact) -> np.ndarray:
+    """``sin(pi (z - z0) / L_b)`` of the (2, 1) hoop mode at impact positions, 0 off the barrel."""
+    z0, z1 = barrel_region(bat)
+    z = np.atleast_1d(np.asarray(z_impact, dtype=float))
+    if not np.isfinite(z0):
+        return np.zeros_like(z)
+    x = (z - z0) / (z1 - z0)
+    return np.where((x > 0) & (x < 1), np.sin(np.pi * np.clip(x, 0, 1)), 0.0)
+
+
 def barrel_spring_at(bat: BatModel, z_impact, effective_width=None):
     """Barrel spring-mass at impact positions of a bat, from the slice under each impact.
 
@@ -142,10 +195,11 @@ def barrel_spring_at(bat: BatModel, z_impact, effective_width=None):
     Returns
     -------
     tuple of numpy.ndarray or None
-        ``(stiffness [N/m], mass [kg])``, each of shape (p,), from :func:`barrel_spring` with the
-        outer radius and wall of the slice holding each impact. Where that slice is solid
-        (``inner_diameter == 0``) the stiffness is ``inf`` and the mass 0 (no spring). ``None``
-        for a solid bat.
+        ``(stiffness [N/m], mass [kg])``, each of shape (p,): :func:`barrel_spring` with the outer
+        radius and wall of the slice holding each impact, divided by the squared axial shape
+        ``sin^2(pi x / L_b)`` of the (2, 1) hoop mode (module notes). Off the full-diameter barrel
+        (or where the shape is below 0.05) the stiffness is ``inf`` and the mass 0 (no spring).
+        ``None`` for a solid bat.
 
     Raises
     ------
@@ -156,16 +210,19 @@ def barrel_spring_at(bat: BatModel, z_impact, effective_width=None):
         return None
     b = bat.barrel_effective_width if effective_width is None else effective_width
     if b is None:
-        raise ValueError(f"hollow bat {bat.name!r} needs a barrel effective width")
+        b = default_effective_width(bat)
+    if b is None:
+        raise ValueError(f"hollow bat {bat.name!r} has no hollow barrel")
     z = np.atleast_1d(np.asarray(z_impact, dtype=float))
     edges = np.asarray(bat.z_edges, dtype=float)
     s = np.clip(np.searchsorted(edges, z, side="right") - 1, 0, edges.size - 2)
     r_out = 0.5 * bat.outer_diameter[s]
     inner = 0.5 * bat.inner_diameter[s]
-    hollow = inner > 0
+    shape = axial_shape(bat, z)
+    hollow = (inner > 0) & (shape >= _MIN_AXIAL_SHAPE)
     stiffness = np.full(z.shape, np.inf)
     mass = np.zeros(z.shape)
     if np.any(hollow):
         k, m = barrel_spring(r_out[hollow], (r_out - inner)[hollow], bat.material, b)
-        stiffness[hollow], mass[hollow] = k, m
+        stiffness[hollow], mass[hollow] = k / shape[hollow] ** 2, m / shape[hollow] ** 2
     return stiffness, mass

@@ -38,7 +38,7 @@ class BatModel:
     shear_stiffness: np.ndarray  # kappa * G * A [N], shape (n,)
     point_masses: tuple[tuple[float, float], ...]  # (z from knob [m], mass [kg]) after reconciliation
     material: Material
-    barrel_effective_width: float | None = None  # width of barrel ring taking part in hoop flexing [m]
+    barrel_effective_width: float | None = None  # hoop-mode modal width [m]; None: barrel.default_effective_width
     extras: dict = field(default_factory=dict)
 
     @property

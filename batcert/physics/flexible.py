@@ -20,10 +20,12 @@ as a residual pseudo-mode of gain ``omega_res sqrt(c)`` at ``omega_res`` = twice
 frequency, a spring in series with the ball that follows the much slower force.
 
 Hollow bats: the hoop mode of :func:`barrel.barrel_spring_at` (``k_h``, ``m_h``) sits between ball
-and beam. ``barrel_model="series"`` (default, as briefed): a separate barrel mass ``W`` on the
+and beam. ``barrel_model="series"``: a separate barrel mass ``W`` on the
 spring ``k_h (y - W)``, which pushes the beam; the linear part of each impact is diagonalised once
 (undamped coupled modes, ``eigh``). The beam already holds the shell's mass, so ``m_h`` is counted
-twice. ``"modal"``: the hoop deflection ``s`` is one more mode of the bat (``m_h s'' + k_h s = F``,
+twice, and near the barrel's ends, where the (2, 1) hoop mode's mass m_h / sin^2 grows large,
+that extra mass makes Eq. 3 (which uses the bat's MOI without it) meaningless, even above 1:
+kept for comparison only. ``"modal"`` (default): the hoop deflection ``s`` is one more mode of the bat (``m_h s'' + k_h s = F``,
 contact point at ``y - s``), the Lagrangian reduction of the ring's n = 2 mode, no mass added.
 One material, one structural loss factor: every (coupled) mode gets ``zeta = eta / 2``.
 
@@ -337,7 +339,7 @@ class FlexibleEngine:
     name = "flexible"
 
     def __init__(self, n_modes: int = 24, time_step: float = 1e-5, refine: int = 1,
-                 residual: bool = True, barrel_model: str = "series",
+                 residual: bool = True, barrel_model: str = "modal",
                  max_contact_time: float = 0.02, record_states: bool = False) -> None:
         if n_modes < 1 or int(n_modes) != n_modes:
             raise ValueError(f"n_modes must be a positive integer, got {n_modes!r}")

@@ -110,8 +110,6 @@ def build_geometry(name: str, construction: str, length: float, profile_z, profi
         points.append((0.0, knob_mass))
     if end_cap_mass > 0:
         points.append((length, end_cap_mass))
-    if construction == "hollow" and barrel_effective_width is None:
-        barrel_effective_width = float(outer.max())
     return BatModel(
         name=name, construction=construction, length=length, z_edges=edges,
         outer_diameter=outer, inner_diameter=inner,

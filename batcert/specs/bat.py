@@ -121,8 +121,9 @@ BAT_SCHEMA = Schema("bat", (
           default=0.0),
     Field("shear_correction", number(exclusive_minimum=0.0, maximum=1.5), "Timoshenko shear "
           "coefficient kappa; default 6(1+nu)/(7+6nu) solid, 2(1+nu)/(4+3nu) hollow."),
-    Field("barrel_effective_width", quantity("length", positive=True), "Axial width of barrel "
-          "shell taking part in hoop flexing (hollow bats); default the barrel's outer diameter."),
+    Field("barrel_effective_width", quantity("length", positive=True), "Modal width of the "
+          "barrel's hoop mode (hollow bats); default half the full-diameter barrel length "
+          "(docs/physics.md)."),
     Field("slice_length", quantity("length", positive=True, maximum=0.02), "Beam slice length.",
           default=0.01),
     Field("measured", section(MEASURED_SCHEMA), "Measured mass properties; the model is "

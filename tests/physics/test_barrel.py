@@ -62,22 +62,47 @@ def hollow_r161(inner_from=0.55, wall=2.5e-3, width=0.05):
 
 def test_spring_at_impact_locations():
     bat = hollow_r161()
-    z = np.array([0.30, 0.60, 0.70, 0.80])
+    z0, z1 = barrel.barrel_region(bat)
+    z = np.array([0.30, z0 + 0.3 * (z1 - z0), 0.5 * (z0 + z1), z0 + 0.8 * (z1 - z0)])
     k, m = barrel.barrel_spring_at(bat, z)
     assert k.shape == m.shape == (4,)
     assert k[0] == np.inf and m[0] == 0.0  # solid slice: no barrel spring
     s = np.searchsorted(bat.z_edges, z[1:], side="right") - 1
-    k_ref, m_ref = barrel.barrel_spring(bat.outer_diameter[s] / 2, 2.5e-3, AL7050, 0.05)
-    np.testing.assert_allclose(k[1:], k_ref, rtol=1e-12)
-    np.testing.assert_allclose(m[1:], m_ref, rtol=1e-12)
+    k_ring, m_ring = barrel.barrel_spring(bat.outer_diameter[s] / 2, 2.5e-3, AL7050, 0.05)
+    # the (2, 1) hoop mode: ring spring-mass divided by sin^2 of the axial position
+    shape = np.sin(np.pi * (z[1:] - z0) / (z1 - z0))
+    np.testing.assert_allclose(barrel.axial_shape(bat, z[1:]), shape, rtol=1e-12)
+    np.testing.assert_allclose(k[1:], k_ring / shape**2, rtol=1e-12)
+    np.testing.assert_allclose(m[1:], m_ring / shape**2, rtol=1e-12)
     k2, _ = barrel.barrel_spring_at(bat, z, effective_width=0.10)
     np.testing.assert_allclose(k2[1:], 2 * k[1:], rtol=1e-12)
 
 
-def test_solid_bat_has_no_spring_and_hollow_needs_a_width():
+def test_hoop_mode_is_most_compliant_mid_barrel_and_absent_off_it():
+    bat = hollow_r161()
+    z0, z1 = barrel.barrel_region(bat)
+    z = np.linspace(z0 + 1e-3, z1 - 1e-3, 41)
+    k, _ = barrel.barrel_spring_at(bat, z)
+    finite = np.isfinite(k)
+    assert abs(z[np.argmin(np.where(finite, k, np.inf))] - 0.5 * (z0 + z1)) < 0.01
+    k_off, m_off = barrel.barrel_spring_at(bat, [z0 - 0.02])
+    assert k_off[0] == np.inf and m_off[0] == 0.0
+
+
+def test_default_width_is_half_the_full_diameter_barrel():
+    bat = hollow_r161(width=None)
+    z0, z1 = barrel.barrel_region(bat)
+    assert 0 < z0 < z1 <= bat.length
+    assert barrel.default_effective_width(bat) == pytest.approx(0.5 * (z1 - z0))
+    k_default, _ = barrel.barrel_spring_at(bat, [0.5 * (z0 + z1)])
+    k_explicit, _ = barrel.barrel_spring_at(bat, [0.5 * (z0 + z1)], 0.5 * (z1 - z0))
+    np.testing.assert_allclose(k_default, k_explicit, rtol=1e-12)
+
+
+def test_solid_bat_has_no_spring():
     assert barrel.barrel_spring_at(r161_bat(), [0.7]) is None
-    with pytest.raises(ValueError, match="effective width"):
-        barrel.barrel_spring_at(hollow_r161(width=None), [0.7])
+    assert barrel.default_effective_width(r161_bat()) is None
+    assert np.isnan(barrel.barrel_region(r161_bat())[0])
 
 
 def test_bad_geometry():

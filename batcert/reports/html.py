@@ -1,0 +1,83 @@
+"""The certification report as one self-contained HTML file (inline CSS and SVG, no scripts)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from batcert.reports import build_view, environment, metric_name, svg
+from batcert.units import Display, to_us
+
+if TYPE_CHECKING:
+    from markupsafe import Markup
+
+    from batcert.results import RunResult
+
+X_LABEL = "Impact location from the pivot [m]"
+
+
+def cell(value: object) -> Markup:
+    """A table cell's content: SI on the first line, US customary below it."""
+    from markupsafe import Markup, escape
+
+    if isinstance(value, Display):
+        us = Markup('<span class="us">{}</span>').format(value.us) if value.us else ""
+        return Markup('<span class="si">{}</span>{}').format(value.si, us)
+    return escape(str(value))
+
+
+def _cop_lines(result: RunResult) -> list[svg.VLine]:
+    """One "COP" marker, or one per condition when the conditions' COPs differ."""
+    cops = {round(c.cop, 6) for c in result.conditions}
+    if len(cops) <= 1:
+        cop = result.conditions[0].cop if result.conditions else result.mass_properties.cop
+        return [svg.VLine(cop, "COP")]
+    return [svg.VLine(c.cop, f"COP {c.name}", svg.color(i))
+            for i, c in enumerate(result.conditions)]
+
+
+def exit_speed_chart(result: RunResult) -> str:
+    """Exit speed against impact location, one line per condition, impact points circled."""
+    series = [svg.Series(c.name, c.sweep.impact_location, c.sweep.exit_speed)
+              for c in result.conditions]
+    points = [svg.Point(c.impact_location, c.exit_speed, i) for i, c in enumerate(result.conditions)]
+    return svg.line_chart(
+        series,
+        title="Exit speed against impact location",
+        x_label=X_LABEL,
+        y_label="Exit speed [m/s]",
+        y2=svg.SecondaryAxis("Exit speed [mph]", to_us(1.0, "speed")),
+        vlines=_cop_lines(result),
+        points=points,
+        point_legend="impact point",
+    )
+
+
+def metric_chart(result: RunResult) -> str:
+    """The protocol metric against impact location (only when it is not the exit speed)."""
+    name = metric_name(result.metric)
+    series = [svg.Series(c.name, c.sweep.impact_location, c.sweep.metric)
+              for c in result.conditions]
+    points = [svg.Point(c.impact_location, c.metric_value, i)
+              for i, c in enumerate(result.conditions)]
+    return svg.line_chart(
+        series,
+        title=f"{name} against impact location",
+        x_label=X_LABEL,
+        y_label=f"{name} [-]",
+        vlines=_cop_lines(result),
+        points=points,
+        point_legend="impact point",
+    )
+
+
+def render_html(result: RunResult) -> str:
+    """The full report as an HTML5 document."""
+    from markupsafe import Markup
+
+    view = build_view(result)
+    view["charts"] = [Markup(exit_speed_chart(result))]
+    if view["show_metric_plot"]:
+        view["charts"].append(Markup(metric_chart(result)))
+    env = environment().overlay()
+    env.filters.update(cell=cell)
+    return env.get_template("report.html.j2").render(**view)

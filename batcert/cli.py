@@ -109,6 +109,9 @@ def inspect(file, pivot, as_json):
     from batcert.units import UnitError, parse_quantity
     path = str(resolve("bat", file)) if not Path(file).is_file() else file
     kind = jobs.detect_kind(path)
+    if kind not in ("bat", "ball"):
+        raise click.UsageError(f"{file} is a {kind} file; inspect takes a bat or a ball "
+                               "(check it with `batcert validate`)")
     if kind == "ball":
         from batcert.specs.ball import load_ball
         info = jobs.inspect_ball(load_ball(path))
@@ -195,6 +198,107 @@ def validate(files):
             console.error(f"{f}: {exc}")
             failed = True
     sys.exit(3 if failed else 0)
+
+
+COMPARE_EXIT_CODES = """\b
+Exit codes:
+  0  the comparison ran and no protocol limit fails (study protocols set no limit)
+  1  a protocol with a limit fails for at least one bat
+  2  usage error (unknown protocol, study, bat or engine; fewer than two bats)
+  3  invalid input (a spec file has errors; nothing is written)"""
+
+LEAGUE_EXIT_CODES = """\b
+Exit codes:
+  0  every bat passes every rule (rules that do not apply to a bat are skipped)
+  1  a rule fails, or a rule is not modelled (never counted as a pass; see
+     --allow-not-modelled)
+  2  usage error (unknown league, bat or engine)
+  3  invalid input (a spec file has errors; nothing is written)"""
+
+
+def _engine_guard(func):
+    """Map an unavailable engine or an impossible request to a usage error (exit 2)."""
+    import functools
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        from batcert.jobs_compare import EngineUnavailable, UsageProblem
+        try:
+            return func(*args, **kwargs)
+        except (EngineUnavailable, UsageProblem) as exc:
+            raise click.UsageError(str(exc)) from None
+
+    return wrapper
+
+
+@main.command(epilog=COMPARE_EXIT_CODES)
+@click.argument("bats", nargs=-1)
+@click.option("--protocol", "-p", "protocols", multiple=True,
+              help="Shipped protocol id or protocol YAML path; repeat for several.")
+@click.option("--study", default=None, help="Shipped study id (e.g. smith2001) or study YAML "
+              "path: its protocols, default bats and claims.")
+@click.option("--reference", default=None, help="Reference bat of P = (P_bat - P_ref) / P_ref "
+              "(Smith 2001 Eq. 6); default the first bat; added to the bats if not among them.")
+@click.option("--engine", default="flexible", show_default=True,
+              help="Impact engine tier: rigid or flexible.")
+@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
+              default=Path("reports"), show_default=True, help="Directory for the reports.")
+@click.option("--format", "formats", default="md,html,json", show_default=True,
+              help="Report formats, comma-separated: md, html, json.")
+@click.option("--no-reports", is_flag=True, help="Print the comparison only; write no files.")
+@click.option("--json", "as_json", is_flag=True, help="Print only the comparison JSON on stdout.")
+@_guard
+@_engine_guard
+def compare(bats, protocols, study, reference, engine, out_dir, formats, no_reports, as_json):
+    """Run every BAT under every protocol and compare them side by side: the metric per protocol
+    and condition, the relative performance P against the reference bat with its mean and spread,
+    the COP against the sweet spot, and a study's claims tested against the model."""
+    from batcert import jobs_compare
+    fmts = _formats(formats)
+    result = jobs_compare.run_comparison(list(bats), list(protocols), study, reference, engine)
+    paths = []
+    if not no_reports:
+        from batcert.compare_reports import write_comparison_reports
+        paths = write_comparison_reports(result, out_dir, fmts)
+    if as_json:
+        console.print_json(result.to_dict())
+    else:
+        console.comparison_summary(result, paths)
+    failed = any(v == "fail" for p in result.protocols for v in p.verdicts.values())
+    sys.exit(1 if failed else 0)
+
+
+@main.command(epilog=LEAGUE_EXIT_CODES)
+@click.argument("league_id", metavar="LEAGUE")
+@click.argument("bats", nargs=-1, required=True)
+@click.option("--engine", default="flexible", show_default=True,
+              help="Impact engine tier for performance rules: rigid or flexible.")
+@click.option("--allow-not-modelled", is_flag=True, help="Exit 0 when nothing fails, even if "
+              "some rules are not modelled (they are still reported).")
+@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
+              default=Path("reports"), show_default=True, help="Directory for the reports.")
+@click.option("--format", "formats", default="md,html,json", show_default=True,
+              help="Report formats, comma-separated: md, html, json.")
+@click.option("--no-reports", is_flag=True, help="Print the verdicts only; write no files.")
+@click.option("--json", "as_json", is_flag=True, help="Print only the league JSON on stdout.")
+@_guard
+@_engine_guard
+def league(league_id, bats, engine, allow_not_modelled, out_dir, formats, no_reports, as_json):
+    """Check BATs against the rules of LEAGUE (shipped id such as ncaa, nfhs, usssa,
+    usa-baseball, little-league, mlb, or a league YAML path): length, drop, barrel, construction,
+    material and performance, each with measured value, limit and verdict."""
+    from batcert import jobs_compare
+    fmts = _formats(formats)
+    result = jobs_compare.run_league(league_id, list(bats), engine)
+    paths = []
+    if not no_reports:
+        from batcert.compare_reports import write_league_reports
+        paths = write_league_reports(result, out_dir, fmts)
+    if as_json:
+        console.print_json(result.to_dict())
+    else:
+        console.league_summary(result, paths)
+    sys.exit(0 if result.passed(allow_not_modelled) else 1)
 
 
 if __name__ == "__main__":

@@ -92,3 +92,69 @@ def table(title: str, columns: list[str], rows: list[list[str]]) -> None:
     for r in rows:
         t.add_row(*r)
     out.print(t)
+
+
+def comparison_summary(result, paths: list) -> None:
+    """Terminal view of a :class:`~batcert.compare.ComparisonResult`: per protocol the metric
+    and P of each bat per condition, then the study's claims and the findings."""
+    from rich.markup import escape
+    from rich.text import Text
+
+    from batcert.compare import percent
+    from batcert.compare_reports import metric_text
+    labels = [b.label for b in result.bats]
+    out.print(f"[bold]{escape(result.title)}[/]  (reference {escape(result.reference)}; engine "
+              f"{result.engine})", markup=True)
+    for p in result.protocols:
+        name = METRIC_LABEL.get(p.metric, p.metric)
+        cols = ["condition"] + [f"{name}: {lab}" for lab in labels] + [
+            f"P: {lab}" for lab in result.compared]
+        rows = [[c.name] + [metric_text(c.bats[lab].value, p.metric) for lab in labels]
+                + [percent(c.bats[lab].relative) for lab in result.compared]
+                for c in p.conditions]
+        spreads = [p.relative_spread[lab] for lab in result.compared]
+        rows.append(["mean P (std)"] + [""] * len(labels) + [
+            f"{percent(s.mean)} ({'—' if s.std is None else f'{s.std * 100:.2f} %'})"
+            for s in spreads])
+        table(escape(f"{p.protocol} — {p.title}"), [escape(c) for c in cols],
+              [[escape(c) for c in r] for r in rows])
+    if result.claims:
+        style = {"supported": "green", "not-supported": "red", "not-testable": "yellow"}
+        t = Table(title="study claims against the model", box=None, title_justify="left",
+                  header_style="bold", pad_edge=False)
+        for col in ("claim", "model", "evidence"):
+            t.add_column(col)
+        for c in result.claims:
+            t.add_row(Text(c.id), Text(c.status, style=style.get(c.status, "bold")),
+                      Text(c.evidence))
+        out.print(t)
+    for f in result.findings:
+        out.print(f"  - {f}", markup=False)
+    for w in result.warnings:
+        out.print(Text.assemble(("  warning: ", "yellow"), w))
+    for p in paths:
+        out.print(f"  wrote {p}", markup=False)
+
+
+def league_summary(result, paths: list) -> None:
+    """Terminal view of a :class:`~batcert.league.LeagueResult`: a table per bat and rule."""
+    from rich.text import Text
+
+    from batcert.compare_reports import VERDICT_TEXT, limit_text, margin_text, rule_value_text
+    style = {"pass": "green", "fail": "red", "not-modelled": "yellow", "not-applicable": "dim",
+             "incomplete": "yellow"}
+    for b in result.bats:
+        out.print(Text.assemble((b.verdict.upper(), f"bold {style[b.verdict]}"),
+                                f"  {b.bat} — {result.league} ({result.title})"))
+        t = Table(box=None, header_style="bold", pad_edge=False)
+        for col in ("rule", "value", "limit", "verdict", "margin", "note"):
+            t.add_column(col, justify="right" if col in ("value", "limit", "margin") else "left")
+        for r in b.rules:
+            t.add_row(Text(r.rule), Text(rule_value_text(r.value, r.unit)), Text(limit_text(r)),
+                      Text(VERDICT_TEXT[r.verdict], style=style[r.verdict]),
+                      Text(margin_text(r)), Text(r.note))
+        out.print(t)
+        for w in b.warnings:
+            out.print(Text.assemble(("  warning: ", "yellow"), w))
+    for p in paths:
+        out.print(f"  wrote {p}", markup=False)

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
+from batcert.errors import InputError, Problem
 from batcert.physics import rigid
 from batcert.physics.engine import get_engine
 from batcert.results import RunResult
@@ -18,7 +19,8 @@ from batcert.runner.runner import run_protocol
 from batcert.specs.ball import BallSpec, load_ball
 from batcert.specs.bat import BuiltBat, build_bat, load_bat
 from batcert.specs.protocol import ProtocolSpec, load_protocol
-from batcert.specs.resolve import resolve, shipped_names
+from batcert.specs.resolve import NotFound, resolve, shipped_names
+from batcert.specs.schema import lookup
 from batcert.specs.yamlio import load_yaml
 
 
@@ -36,8 +38,17 @@ def load_bat_any(value: str) -> BuiltBat:
 def load_protocol_any(value: str) -> ProtocolInputs:
     path = resolve("protocol", value)
     protocol = load_protocol(path)
-    ball_path = resolve("ball", protocol.values["ball"], relative_to=Path(path))
-    return ProtocolInputs(protocol, load_ball(ball_path))
+    return ProtocolInputs(protocol, load_ball(protocol_ball_path(protocol)))
+
+
+def protocol_ball_path(protocol: ProtocolSpec) -> Path:
+    """The protocol's ball file; an unknown ball is invalid input in the protocol file (its
+    `ball:` line), not a usage error."""
+    try:
+        return resolve("ball", protocol.values["ball"], relative_to=Path(protocol.path))
+    except NotFound as exc:
+        line = lookup(load_yaml(protocol.path), "ball")[0]
+        raise InputError([Problem(protocol.path, line, "ball", str(exc))]) from None
 
 
 def run(bat: BuiltBat, protocols: list[ProtocolInputs], engine: str = "flexible",
@@ -87,14 +98,15 @@ def _modes_info(built: BuiltBat, pivot: float) -> dict:
     m = built.model
     if m.construction == "hollow":
         from batcert.physics import barrel
-        in_barrel = np.flatnonzero(m.outer_diameter >= 0.99 * m.outer_diameter.max())
-        i = int(in_barrel[in_barrel.size // 2])  # middle of the full-diameter barrel
-        z = float(m.z_mid[i])
+        z0, z1 = barrel.barrel_region(m)
+        zc = 0.5 * (z0 + z1)  # middle of the full-diameter barrel, where the hoop mode peaks
+        i = int(np.searchsorted(m.z_edges, zc) - 1)
+        width = m.barrel_effective_width or barrel.default_effective_width(m)
         k, mass = barrel.barrel_spring(0.5 * m.outer_diameter[i], m.wall_thickness[i], m.material,
-                                       m.barrel_effective_width)
-        out["barrel"] = {"position": z, "outer_diameter": float(m.outer_diameter[i]),
-                         "wall": float(m.wall_thickness[i]),
-                         "effective_width": m.barrel_effective_width,
+                                       width)
+        out["barrel"] = {"start": z0, "end": z1, "position": zc,
+                         "outer_diameter": float(m.outer_diameter[i]),
+                         "wall": float(m.wall_thickness[i]), "effective_width": width,
                          "hoop_frequency_hz": float(barrel.hoop_frequency(
                              0.5 * m.outer_diameter[i], m.wall_thickness[i], m.material)),
                          "stiffness": float(k), "mass": float(mass)}
@@ -122,6 +134,8 @@ def detect_kind(path: str) -> str:
         return "protocol"
     if "rules" in data:
         return "league"
+    if "protocols" in data:
+        return "study"
     if "construction" in data or "profile" in data:
         return "bat"
     if "cor" in data or "contact" in data:
@@ -133,13 +147,15 @@ def validate_file(path: str) -> str:
     """Load (and for bats, build and reconcile) a spec; raise InputError on any problem."""
     kind = detect_kind(path)
     if kind == "protocol":
-        spec = load_protocol(path)
-        resolve("ball", spec.values["ball"], relative_to=Path(path))
+        load_ball(protocol_ball_path(load_protocol(path)))
     elif kind == "ball":
         load_ball(path)
     elif kind == "league":
         from batcert.specs.league import load_league
         load_league(path)
+    elif kind == "study":
+        from batcert.specs.study import load_study
+        load_study(path)
     else:
         build_bat(load_bat(path))
     return kind

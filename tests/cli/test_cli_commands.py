@@ -1,0 +1,213 @@
+"""The command line (batcert.cli): help, protocols, inspect, run, exit codes and clean --json."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+ASH = REPO / "bats" / "ash-34.yaml"
+SHIPPED = ["astm-bpf", "ncaa-bbcor", "ncaa-besr", "proposed", "stationary-ball"]
+CONDITION_KEYS = {"name", "pitch_speed", "bat_angular_speed", "impact_location", "exit_speed",
+                  "bat_angular_speed_after", "cor", "bpf", "besr", "bbcor",
+                  "collision_efficiency", "sweep"}
+
+
+@pytest.mark.parametrize("args", [["--help"], ["run", "--help"], ["validate", "--help"],
+                                  ["inspect", "--help"]])
+def test_help_lists_exit_codes(batcert_cli, args):
+    result = batcert_cli(*args)
+    assert result.exit_code == 0
+    text = " ".join(result.stdout.split())
+    for line in ("0 every verdict passes", "1 at least one verdict fails", "2 usage error",
+                 "3 invalid input"):
+        assert line in text
+
+
+def test_version(batcert_cli):
+    from batcert import __version__
+    result = batcert_cli("--version")
+    assert result.exit_code == 0 and __version__ in result.stdout
+
+
+def test_protocols_lists_shipped(batcert_cli):
+    result = batcert_cli("protocols")
+    assert result.exit_code == 0
+    for pid in SHIPPED:
+        assert pid in result.stdout
+    data = json.loads(batcert_cli("protocols", "--json").stdout)
+    assert sorted(p["id"] for p in data) == SHIPPED
+    limits = {p["id"]: p["limit"] for p in data}
+    assert limits == {"astm-bpf": 1.15, "ncaa-bbcor": 0.5, "ncaa-besr": 0.728, "proposed": None,
+                      "stationary-ball": None}
+
+
+def test_inspect_ash_json(batcert_cli):
+    """Smith 2001 ash bat, reconciled exactly to the measured values about its 150 mm pivot; COP
+    from Eq. 4, q = I / (M rbar)."""
+    result = batcert_cli("inspect", ASH, "--json")
+    assert result.exit_code == 0, result.stderr
+    info = json.loads(result.stdout)
+    rel = 1e-9  # reconciliation solves three linear equations: exact to rounding
+    assert info["pivot"] == pytest.approx(0.150, rel=rel)
+    assert info["mass"] == pytest.approx(0.906, rel=rel)
+    assert info["cg"] == pytest.approx(0.429, rel=rel)
+    assert info["moi_pivot"] == pytest.approx(0.209, rel=rel)
+    assert info["cop"] == pytest.approx(info["moi_pivot"] / (info["mass"] * info["cg"]), rel=1e-12)
+    assert info["balance_point"] == pytest.approx(0.579, rel=rel)
+    assert info["moi_cg"] == pytest.approx(0.209 - 0.906 * 0.429**2, rel=1e-6)
+    assert info["reconciliation"]["method"] == "density-profile"
+    assert info["geometry"]["mass"] != pytest.approx(0.906, rel=1e-4)  # geometry alone differs
+
+
+def test_inspect_by_shipped_name_and_pivot(batcert_cli):
+    info = json.loads(batcert_cli("inspect", "ash-34", "--json", "--pivot", "6 in").stdout)
+    p = 6 * 0.0254
+    assert info["pivot"] == pytest.approx(p)
+    assert info["cg"] == pytest.approx(0.579 - p, rel=1e-9)
+    assert info["moi_pivot"] == pytest.approx(0.209 - 0.906 * 0.429**2 + 0.906 * (0.579 - p) ** 2,
+                                              rel=1e-9)
+
+
+def test_inspect_bad_pivot_is_usage_error(batcert_cli):
+    result = batcert_cli("inspect", "ash-34", "--pivot", "6 kg")
+    assert result.exit_code == 2 and "not a length" in result.stderr
+
+
+def test_inspect_ball(batcert_cli):
+    result = batcert_cli("inspect", REPO / "protocols" / "balls" / "nathan-2000.yaml", "--json")
+    assert result.exit_code == 0, result.stderr
+    info = json.loads(result.stdout)
+    assert info["mass"] == 0.145 and info["radius"] == pytest.approx(0.0366)
+    assert set(info["cor"]) == {0.53}
+
+
+def test_inspect_table(batcert_cli):
+    result = batcert_cli("inspect", ASH)
+    assert result.exit_code == 0
+    assert "0.906 kg" in result.stdout and "COP (from pivot)" in result.stdout
+
+
+def _run(batcert_cli, *args):
+    return batcert_cli("run", ASH, "--engine", "rigid", *args)
+
+
+def test_run_json_contract(batcert_cli, tmp_path):
+    result = _run(batcert_cli, "-p", "ncaa-besr", "--json", "--out", tmp_path / "r")
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)  # stdout is only JSON
+    assert {"protocol", "metric", "value", "limit", "verdict", "conditions"} <= set(data)
+    assert data["protocol"] == "ncaa-besr" and data["metric"] == "besr"
+    assert data["limit"] == 0.728 and data["verdict"] == "pass"
+    assert data["engine"] == "rigid"
+    for c in data["conditions"]:
+        assert CONDITION_KEYS <= set(c)
+        assert c["pitch_speed"] < 0  # stored negative: toward the bat
+        sweep = c["sweep"]
+        assert len(sweep["impact_location"]) == len(sweep["exit_speed"]) > 2
+
+
+def test_run_several_protocols_gives_a_list(batcert_cli, tmp_path):
+    result = _run(batcert_cli, "-p", "ncaa-besr", "-p", "proposed", "--json", "--no-reports")
+    assert result.exit_code == 0
+    data = json.loads(result.stdout)
+    assert [d["protocol"] for d in data] == ["ncaa-besr", "proposed"]
+    assert data[1]["verdict"] is None and data[1]["limit"] is None
+
+
+@pytest.mark.parametrize("protocol, code, verdict", [
+    ("ncaa-bbcor", 1, "fail"),  # rigid: BBCOR = ball COR at 136 mph = 0.510 > 0.500
+    ("ncaa-besr", 0, "pass"),
+    ("proposed", 0, None),  # no limit: exit 0
+])
+def test_exit_code_follows_verdict(batcert_cli, protocol, code, verdict):
+    result = _run(batcert_cli, "-p", protocol, "--json", "--no-reports")
+    assert result.exit_code == code
+    assert json.loads(result.stdout)["verdict"] == verdict
+
+
+def test_one_failing_protocol_fails_the_run(batcert_cli):
+    result = _run(batcert_cli, "-p", "ncaa-besr", "-p", "ncaa-bbcor", "--no-reports")
+    assert result.exit_code == 1
+    assert "PASS" in result.stdout and "FAIL" in result.stdout
+
+
+def test_run_writes_reports(batcert_cli, tmp_path):
+    out = tmp_path / "reports"
+    result = _run(batcert_cli, "-p", "ncaa-besr", "--out", out)
+    assert result.exit_code == 0, result.stderr
+    written = sorted(p.name for p in out.iterdir())
+    assert [Path(n).suffix for n in written] == [".html", ".json", ".md"]
+    stem = Path(written[0]).stem
+    assert all(Path(n).stem == stem for n in written)
+    saved = json.loads((out / f"{stem}.json").read_text())
+    assert saved["protocol"] == "ncaa-besr" and saved["verdict"] == "pass"
+    for name in written:
+        assert f"wrote {out / name}" in result.stdout
+
+
+def test_run_json_with_reports_keeps_stdout_clean(batcert_cli, tmp_path):
+    out = tmp_path / "reports"
+    result = _run(batcert_cli, "-p", "proposed", "--json", "--out", out, "--format", "json")
+    assert result.exit_code == 0
+    printed = json.loads(result.stdout)
+    (saved,) = [json.loads(p.read_text()) for p in out.iterdir()]
+    assert printed == saved
+
+
+def test_no_reports_writes_nothing(batcert_cli, tmp_path):
+    out = tmp_path / "reports"
+    assert _run(batcert_cli, "-p", "proposed", "--no-reports", "--out", out).exit_code == 0
+    assert not out.exists()
+
+
+def test_bad_format_is_usage_error(batcert_cli, tmp_path):
+    out = tmp_path / "reports"
+    result = _run(batcert_cli, "-p", "proposed", "--format", "pdf", "--out", out)
+    assert result.exit_code == 2 and "choose from md, html, json" in result.stderr
+    assert not out.exists()
+
+
+def test_unknown_option_is_usage_error(batcert_cli):
+    assert batcert_cli("run", ASH, "--protocl", "proposed").exit_code == 2
+
+
+def test_protocol_error_exits_3(batcert_cli, tmp_path):
+    """A protocol that cannot apply to this bat (window beyond the pivot) is invalid input."""
+    proto = tmp_path / "long-window.yaml"
+    proto.write_text((REPO / "protocols" / "ncaa-besr.yaml").read_text().replace(
+        "window: [2 in, 12 in]", "window: [2 in, 30 in]"))
+    out = tmp_path / "reports"
+    result = _run(batcert_cli, "-p", proto, "--out", out)
+    assert result.exit_code == 3 and "beyond the pivot" in result.stderr
+    assert not out.exists()
+
+
+def test_installed_entry_point_json_is_clean(tmp_path):
+    """The real console script, in a fresh process: stdout parses as JSON, nothing else on it."""
+    exe = Path(sys.executable).with_name("batcert")
+    cmd = [str(exe)] if exe.exists() else [sys.executable, "-m", "batcert.cli"]
+    env = dict(os.environ, COLUMNS="60")
+    proc = subprocess.run([*cmd, "run", str(ASH), "-p", "ncaa-bbcor", "--engine", "rigid",
+                           "--json", "--out", str(tmp_path / "r"), "--format", "json"],
+                          capture_output=True, text=True, env=env, timeout=300)
+    assert proc.returncode == 1, proc.stderr  # rigid BBCOR 0.510 fails the 0.500 limit
+    assert json.loads(proc.stdout)["verdict"] == "fail"
+
+
+def test_inspect_protocol_file_is_usage_error(batcert_cli):
+    result = batcert_cli("inspect", REPO / "protocols" / "proposed.yaml")
+    assert result.exit_code == 2
+    assert "is a protocol file; inspect takes a bat or a ball" in result.stderr
+
+
+def test_inspect_invalid_bat_exits_3(batcert_cli):
+    bad = REPO / "tests" / "fixtures" / "bad" / "bat-unknown-material.yaml"
+    result = batcert_cli("inspect", bad, "--json")
+    assert result.exit_code == 3 and result.stdout == ""
+    assert f"{bad}:8: material:" in result.stderr

@@ -10,10 +10,11 @@ import sys
 from typing import Any
 
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from batcert.results import RunResult
-from batcert.units import show
+from batcert.units import show, to_us
 
 out = Console(highlight=False, soft_wrap=True, width=None if sys.stdout.isatty() else 140)
 err = Console(stderr=True, highlight=False, soft_wrap=True)
@@ -61,14 +62,17 @@ def run_summary(result: RunResult, paths: list) -> None:
               f"{_fmt(result.value, result.metric)}{limit}   [engine {result.engine}, "
               f"{result.support}]", markup=False)
     t = Table(show_header=True, header_style="bold", box=None, pad_edge=False)
-    for col in ("condition", "pitch", "bat w1", "impact (from pivot)", "COP", "sweet spot",
-                "exit speed", "COR", "BPF", "BESR", "BBCOR", METRIC_LABEL[result.metric]):
-        t.add_column(col, justify="left" if col == "condition" else "right")
+    cols = ["condition", "pitch\n[m/s]", "bat w1\n[rad/s]", "impact\n[m from pivot]",
+            "COP\n[m]", "sweet spot\n[m]", "exit speed\n[m/s (mph)]", "COR", "BPF", "BESR",
+            "BBCOR", "e_A"]
+    for col in cols:
+        t.add_column(escape(col), justify="left" if col == "condition" else "right")
     for c in result.conditions:
-        t.add_row(c.name, str(show(-c.pitch_speed, "speed", 1)), f"{c.bat_angular_speed:.1f} rad/s",
-                  str(show(c.impact_location, "length", 3)), f"{c.cop:.3f} m",
-                  f"{c.sweet_spot:.3f} m", str(show(c.exit_speed, "speed", 2)), f"{c.cor:.3f}",
-                  f"{c.bpf:.3f}", f"{c.besr:.3f}", f"{c.bbcor:.3f}", _fmt(c.metric_value, result.metric))
+        t.add_row(c.name, f"{-c.pitch_speed:.1f}", f"{c.bat_angular_speed:.1f}",
+                  f"{c.impact_location:.3f}" + ("*" if c.at_window_edge else ""), f"{c.cop:.3f}",
+                  f"{c.sweet_spot:.3f}", f"{c.exit_speed:.2f} ({to_us(c.exit_speed, 'speed'):.1f})",
+                  f"{c.cor:.3f}", f"{c.bpf:.3f}", f"{c.besr:.3f}", f"{c.bbcor:.3f}",
+                  f"{c.collision_efficiency:.3f}")
     out.print(t)
     for w in result.warnings:
         out.print(f"  [yellow]warning:[/] {w}", markup=True)

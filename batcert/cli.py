@@ -128,6 +128,8 @@ def inspect(file, pivot, as_json):
 
 
 def _show_bat(info: dict) -> None:
+    from rich.markup import escape
+
     from batcert.units import show
     g = info["geometry"]
     console.kv_table(f"{info['name']}  ({info['construction']}, {info['material']})", [
@@ -146,23 +148,30 @@ def _show_bat(info: dict) -> None:
         for j, f in enumerate(info["modes_hz"][:6]):
             nodes = info["mode_nodes"][j] if j < len(info["mode_nodes"]) else []
             rows.append([str(j + 1), f"{f:.0f}", ", ".join(f"{z * 100:.1f}" for z in nodes)])
-        console.table("free-free bending modes", ["mode", "frequency [Hz]", "nodes [cm from knob]"],
-                      rows)
+        console.table("free-free bending modes",
+                      ["mode", escape("frequency [Hz]"), escape("nodes [cm from knob]")], rows)
     if info.get("barrel"):
         console.kv_table("barrel (hoop) spring", [(k, f"{v:.4g}" if isinstance(v, float) else str(v))
                                                   for k, v in info["barrel"].items()])
 
 
 def _show_ball(info: dict) -> None:
-    console.kv_table(info["name"], [("mass", f"{info['mass']:.4f} kg"),
-                                    ("radius", f"{info['radius'] * 1e3:.1f} mm")])
-    cols = ["speed [m/s]", "COR"]
-    keys = [k for k in ("collision_time", "contact_time", "max_compression", "peak_force")
-            if k in info]
-    cols += keys
-    rows = [[f"{v:g}", f"{e:.3f}"] + [f"{info[k][i]:.4g}" for k in keys]
-            for i, (v, e) in enumerate(zip(info["speeds"], info["cor"]))]
-    console.table("rigid-wall response", cols, rows)
+    from rich.markup import escape
+
+    console.kv_table(info["name"], [
+        ("mass", f"{info['mass']:.4f} kg ({info['mass'] / 0.028349523125:.2f} oz)"),
+        ("radius", f"{info['radius'] * 1e3:.1f} mm"),
+        ("contact law", f"{info['contact_model']}: k1 = {info['k1']:.4g} N/m^alpha, "
+                        f"alpha = {info['alpha']:g}"),
+        ("COR points", ", ".join(f"{e:g} at {v:g} m/s" for v, e in info["cor_points"]))])
+    rows = [[f"{v:g}", f"{e:.3f}", f"{ct * 1e3:.2f}", f"{cl * 1e3:.2f}", f"{u * 1e3:.1f}",
+             f"{f / 1e3:.1f}"]
+            for v, e, ct, cl, u, f in zip(info["speeds"], info["cor"], info["contact_time"],
+                                          info["collision_time"], info["max_compression"],
+                                          info["peak_force"])]
+    console.table("against a rigid wall", [escape(c) for c in (
+        "speed [m/s]", "COR", "contact time [ms]", "99 % impulse [ms]", "max compression [mm]",
+        "peak force [kN]")], rows)
 
 
 @main.command(epilog=EXIT_CODES)

@@ -113,18 +113,21 @@ def _modes_info(built: BuiltBat, pivot: float) -> dict:
     return out
 
 
-def inspect_ball(ball: BallSpec, speeds=(1.0, 11.0, 26.0, 45.0, 58.0, 67.0)) -> dict:
+def inspect_ball(ball: BallSpec, speeds=(1.0, 11.0, 25.9, 45.0, 58.0, 60.0, 67.0)) -> dict:
+    """The ball spec and its rigid-wall response against impact speed (SI): COR, contact time,
+    99 %-impulse collision time, maximum compression and peak force (Nathan 2000 law with
+    e0 = the spec's COR at each speed)."""
+    from batcert.physics import contact
     b = ball.model
-    info: dict = {"name": b.name, "file": ball.path, "sha256": ball.sha256, "mass": b.mass,
-                  "radius": b.radius, "cor_points": [list(p) for p in zip(b.cor_speeds, b.cor_values)],
-                  "speeds": list(speeds), "cor": b.cor(np.array(speeds)).tolist()}
-    try:
-        from batcert.physics import contact
-    except ImportError:
-        return info
-    if hasattr(contact, "rigid_wall_response"):
-        info.update(contact.rigid_wall_response(b, np.array(speeds)))
-    return info
+    wall = contact.ball_wall_impact(b, np.asarray(speeds, dtype=float))
+    return {"name": b.name, "file": ball.path, "sha256": ball.sha256, "mass": b.mass,
+            "radius": b.radius, "contact_model": b.contact_model, "k1": b.k1, "alpha": b.alpha,
+            "cor_points": [list(p) for p in zip(b.cor_speeds, b.cor_values)],
+            "speeds": list(map(float, speeds)), "cor": wall.cor.tolist(),
+            "contact_time": wall.contact_time.tolist(),
+            "collision_time": wall.collision_time.tolist(),
+            "max_compression": wall.max_compression.tolist(),
+            "peak_force": wall.peak_force.tolist()}
 
 
 def detect_kind(path: str) -> str:

@@ -9,6 +9,7 @@ from typing import Any
 
 from batcert.errors import Collector, InputError, Problem
 from batcert.physics.batmodel import BatModel, Material
+from batcert.physics.calibrate import calibrate_stiffness
 from batcert.physics.reconcile import (MeasuredMassProperties, ModelError, Reconciliation,
                                        build_geometry, reconcile)
 from batcert.specs.common import HEADER_FIELDS, pairs, sha256_of
@@ -83,7 +84,7 @@ MEASURED_SCHEMA = Schema("measured mass properties", (
     Field("pendulum_period", quantity("time", positive=True), "ASTM F2398 pendulum period about "
           "the pivot; I = M g (BP - pivot) T^2 / (4 pi^2). Alternative to moi."),
     Field("first_bending_frequency", quantity("frequency", positive=True), "Measured free-free "
-          "first bending frequency (calibrates E in the flexible engine)."),
+          "first bending frequency; EI and kappa G A are scaled together so the model matches it."),
 ), checks=(_check_measured,))
 
 
@@ -191,10 +192,16 @@ def build_bat(spec: BatSpec) -> BuiltBat:
             v["slice_length"], v["barrel_effective_width"])
         meas = measured_properties(v["measured"]) if v["measured"] else None
         model, rec = reconcile(geometry, meas, v["reconcile"])
+        freq = v["measured"]["first_bending_frequency"] if v["measured"] else None
+        if freq is not None:
+            model, corr = calibrate_stiffness(model, freq, meas.pivot)
+            rec = Reconciliation(rec.method, rec.description + f"; stiffness x "
+                                 f"{corr['stiffness_scale']:.3f} to match the measured "
+                                 f"{freq:.0f} Hz fundamental (model {corr['model_first_frequency_hz']:.0f} Hz)",
+                                 {**rec.corrections, **corr})
     except ModelError as exc:
         data = load_yaml(spec.path)
         keys = exc.field.split(".")
         line = lookup(data, *keys)[0]
         raise InputError([Problem(spec.path, line, exc.field, str(exc))]) from None
-    freq = v["measured"]["first_bending_frequency"] if v["measured"] else None
     return BuiltBat(spec, geometry, model, rec, meas, freq)

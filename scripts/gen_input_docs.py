@@ -18,9 +18,11 @@ sys.path.insert(0, str(ROOT))
 
 from batcert.specs.ball import BALL_SCHEMA  # noqa: E402
 from batcert.specs.bat import BAT_SCHEMA  # noqa: E402
+from batcert.specs.league import LEAGUE_SCHEMA, RULE_KINDS  # noqa: E402
 from batcert.specs.materials import LIBRARY  # noqa: E402
 from batcert.specs.protocol import PROTOCOL_SCHEMA  # noqa: E402
 from batcert.specs.schema import Schema, describe_schema  # noqa: E402
+from batcert.specs.study import CLAIM_CHECKS, STUDY_SCHEMA  # noqa: E402
 
 TARGET = ROOT / "docs" / "inputs.md"
 
@@ -284,11 +286,49 @@ def _part(intro: str, schema: Schema, notes: dict[str, str]) -> list[str]:
     return [intro, describe_schema(schema) + "\n", *_nested(schema, "", notes, 3)]
 
 
+LEAGUE_INTRO = """\
+## League files (`protocols/leagues/*.yaml`)
+
+A league lists the rules a bat must meet (`batcert league ID BAT...`). Every rule names its
+`source` and a `confidence` (H, M, L, D as in REFERENCE-DATA.md). A rule batcert cannot evaluate
+yet is written with `status: not-modelled` and a `reason`: the report lists it as not modelled
+and the bat's verdict is then at best "incomplete", never "pass". Rule kinds:
+
+{kinds}
+"""
+
+STUDY_INTRO = """\
+## Study files (`protocols/studies/*.yaml`)
+
+A study replays a published comparison (`batcert compare BAT... --study ID`): protocols in
+report order (ids, paths relative to the study, or inline protocol mappings), default bats (the
+first is the reference for P = (P_bat - P_ref) / P_ref, Smith 2001 Eq. 6), and the study's claims,
+each tested against the model's numbers with a dead band fixed in the file before running.
+Claim checks:
+
+{checks}
+"""
+
+
+def _kinds_table() -> str:
+    rows = ["| kind | what is checked |", "|---|---|"]
+    rows += [f"| `{k}` | {v.describe} |" for k, v in RULE_KINDS.items()]
+    return "\n".join(rows)
+
+
+def _checks_table() -> str:
+    rows = ["| check | supported when |", "|---|---|"]
+    rows += [f"| `{k}` | {v} |" for k, v in CLAIM_CHECKS.items()]
+    return "\n".join(rows)
+
+
 def generate() -> str:
     parts = [HEADER,
              *_part(BAT_INTRO, BAT_SCHEMA, NOTES),
              *_part(BALL_INTRO, BALL_SCHEMA, {}),
-             *_part(PROTOCOL_INTRO, PROTOCOL_SCHEMA, NOTES_PROTOCOL)]
+             *_part(PROTOCOL_INTRO, PROTOCOL_SCHEMA, NOTES_PROTOCOL),
+             *_part(LEAGUE_INTRO.format(kinds=_kinds_table()), LEAGUE_SCHEMA, {}),
+             *_part(STUDY_INTRO.format(checks=_checks_table()), STUDY_SCHEMA, {})]
     return "\n".join(p.rstrip("\n") + "\n" for p in parts)
 
 

@@ -17,6 +17,12 @@ Exit codes:
   2  usage error (unknown option, unknown protocol name, missing file argument)
   3  invalid input (a spec file has errors; nothing is written)"""
 
+CHECK_EXIT_CODES = """\b
+Exit codes:
+  0  the input is valid (and was shown)
+  2  usage error (unknown option, unknown shipped name, missing file argument)
+  3  invalid input (a spec file has errors)"""
+
 FORMATS = ("md", "html", "json")
 
 
@@ -96,7 +102,7 @@ def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
     sys.exit(1 if any(r.verdict == "fail" for r in results) else 0)
 
 
-@main.command(epilog=EXIT_CODES)
+@main.command(epilog=CHECK_EXIT_CODES)
 @click.argument("file")
 @click.option("--pivot", type=str, default=None, help="Pivot from the knob for the mass "
               "properties, e.g. '6 in' (default: the measured pivot, else 6 in).")
@@ -174,7 +180,7 @@ def _show_ball(info: dict) -> None:
         "peak force [kN]")], rows)
 
 
-@main.command(epilog=EXIT_CODES)
+@main.command(epilog=CHECK_EXIT_CODES)
 @click.option("--json", "as_json", is_flag=True, help="Print only JSON on stdout.")
 def protocols(as_json):
     """List the shipped protocols."""
@@ -189,7 +195,7 @@ def protocols(as_json):
                    for p in items])
 
 
-@main.command(epilog=EXIT_CODES)
+@main.command(epilog=CHECK_EXIT_CODES)
 @click.argument("files", nargs=-1, required=True)
 def validate(files):
     """Check spec files (bat, ball, protocol, league); report every problem of every file."""

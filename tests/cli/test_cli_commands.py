@@ -18,8 +18,7 @@ CONDITION_KEYS = {"name", "pitch_speed", "bat_angular_speed", "impact_location",
                   "collision_efficiency", "sweep"}
 
 
-@pytest.mark.parametrize("args", [["--help"], ["run", "--help"], ["validate", "--help"],
-                                  ["inspect", "--help"]])
+@pytest.mark.parametrize("args", [["--help"], ["run", "--help"]])
 def test_help_lists_exit_codes(batcert_cli, args):
     result = batcert_cli(*args)
     assert result.exit_code == 0
@@ -27,6 +26,15 @@ def test_help_lists_exit_codes(batcert_cli, args):
     for line in ("0 every verdict passes", "1 at least one verdict fails", "2 usage error",
                  "3 invalid input"):
         assert line in text
+
+
+@pytest.mark.parametrize("args", [["validate", "--help"], ["inspect", "--help"],
+                                  ["protocols", "--help"]])
+def test_checking_commands_list_their_own_exit_codes(batcert_cli, args):
+    text = " ".join(batcert_cli(*args).stdout.split())
+    for line in ("0 the input is valid", "2 usage error", "3 invalid input"):
+        assert line in text
+    assert "verdict" not in text  # these commands give no verdict
 
 
 def test_version(batcert_cli):

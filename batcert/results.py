@@ -30,7 +30,7 @@ class ConditionResult:
     relative_speed: float  # normal approach speed of ball and bat at the impact location [m/s]
     impact_location: float  # [m from pivot]
     exit_speed: float  # ball speed after impact [m/s], positive away from the bat
-    bat_angular_speed_after: float  # from angular momentum about the pivot, Smith 2001 Eq. 1 [rad/s]
+    bat_angular_speed_after: float  # Smith 2001 Eq. 1 (pinned); free bat: its angular velocity [rad/s]
     cor: float  # ball-bat coefficient of restitution, Smith 2001 Eq. 3 [-]
     ball_cor: float  # the ball's rigid-wall COR at relative_speed [-]
     bpf: float  # bat performance factor cor / ball_cor, Smith 2001 Eq. 5 [-]

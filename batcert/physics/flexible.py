@@ -37,8 +37,9 @@ Stiff modes cost nothing in stability: the step only resolves the contact pulse 
 10 us, halving the step moves exit speeds by ~1e-5 for solid bats and up to ~1e-3 for thin hollow
 barrels, whose contact force has sharper kinks; Nathan used RK4 at 5 us). An impact ends at
 separation (``u <= 0`` after maximum compression); the exit speed is the ball's velocity then,
-``w2`` comes from Smith 2001, Eq. 1 with ``I = bat.moi_about(pivot)`` (for free bats too, about
-the instantaneous centre) and the COR from Smith 2001, Eq. 3.
+``w2`` and the COR come from momentum balance (:func:`rigid.momentum_outcome`: Smith 2001
+Eqs. 1 and 3 for a pinned bat; for a free bat its angular velocity about the CG and the impact
+point's speed after impact), the rigid-body equivalent of what the vibrating bat did.
 """
 
 from __future__ import annotations
@@ -484,8 +485,8 @@ class FlexibleEngine:
         Returns
         -------
         ImpactOutcome
-            ``exit_speed`` [m/s]; ``bat_angular_speed_after`` [rad/s] from Smith 2001 Eq. 1 with
-            ``I = bat.moi_about(pivot)``; ``cor`` [-] from Eq. 3. Diagnostics, per impact:
+            ``exit_speed`` [m/s]; ``bat_angular_speed_after`` [rad/s] and ``cor`` [-] from
+            :func:`rigid.momentum_outcome` (Smith 2001 Eqs. 1 and 3 when pinned). Diagnostics:
             ``contact_time`` [s], ``peak_force`` [N], ``max_compression`` [m],
             ``vibrational_energy`` left in the flexible modes (bending, residual, barrel) at
             separation [J], ``e0`` [-], ``separated`` [bool]; hollow bats also
@@ -502,7 +503,7 @@ class FlexibleEngine:
         sep = march(system, ball.k1, ball.alpha, beta, batch.relative_speed, self.time_step,
                     self.max_contact_time)
         vb = vp + sep.impulse / ball.mass
-        w2 = rigid.bat_angular_speed_after(bat.moi_about(pivot), ball.mass, r, vp, w1, vb)
+        w2, cor = rigid.momentum_outcome(bat, ball.mass, pivot, support, r, vp, w1, vb)
         om = system.omega
         q = sep.modal.imag / (om * np.sqrt(1 - system.zeta**2))
         p = sep.modal.real - system.zeta * om * q
@@ -516,8 +517,8 @@ class FlexibleEngine:
                                                 extras["barrel_omega"] / (2 * np.pi), np.nan)
         if self.record_states:
             diag.update(_states(system, extras, sep, q, p, pivot, w1 * r, w1))
-        return ImpactOutcome(exit_speed=vb, bat_angular_speed_after=w2,
-                             cor=rigid.cor_from_speeds(r, vp, w1, vb, w2), diagnostics=diag)
+        return ImpactOutcome(exit_speed=vb, bat_angular_speed_after=w2, cor=cor,
+                             diagnostics=diag)
 
 
 _RESIDUAL_CACHE: dict = {}

@@ -101,6 +101,41 @@ def centre_of_percussion(moi_pivot, mass, cg):
     return moi_pivot / (mass * cg)
 
 
+def recoil_factor(bat: BatModel, ball_mass: float, pivot: float, impact_location, support: str):
+    """Effective-mass ratio k of the bat at the impact point for its support [-]:
+    pinned ``m r^2 / I_pivot``; free ``(m / M)(1 + d^2 / k_cg^2)``."""
+    r = np.asarray(impact_location, dtype=float)
+    if support == "pinned":
+        return recoil_factor_pivoted(ball_mass, bat.moi_about(pivot), r)
+    if support == "free":
+        return recoil_factor_free(ball_mass, bat.mass, bat.moi_about(bat.balance_point),
+                                  r + pivot - bat.balance_point)
+    raise ValueError(f"unknown support {support!r}")
+
+
+def momentum_outcome(bat: BatModel, ball_mass: float, pivot: float, support: str,
+                     impact_location, pitch_speed, bat_angular_speed, exit_speed_):
+    """Bat angular speed after impact [rad/s] and the ball-bat COR [-] from momentum balance.
+
+    The impulse on the bat is ``m (v_p - v_b)``; the bat's speed at the impact point changes by
+    ``k (v_p - v_b)`` with the support's recoil factor ``k``. Pinned: ``w2`` is Smith 2001 Eq. 1
+    and ``e`` Eq. 3. Free: ``w2`` is the free bat's angular velocity after impact,
+    ``w1 + m (v_p - v_b) d / I_cg`` (``d`` the impact point's distance from the CG), and ``e`` is
+    Eq. 3 with the impact point's speed after impact in place of ``w2 r``.
+    """
+    r = np.asarray(impact_location, dtype=float)
+    vp, w1, vb = (np.asarray(a, dtype=float) for a in (pitch_speed, bat_angular_speed, exit_speed_))
+    k = recoil_factor(bat, ball_mass, pivot, r, support)
+    point_after = w1 * r + k * (vp - vb)
+    cor = (point_after - vb) / (vp - w1 * r)
+    if support == "pinned":
+        w2 = bat_angular_speed_after(bat.moi_about(pivot), ball_mass, r, vp, w1, vb)
+    else:
+        d = r + pivot - bat.balance_point
+        w2 = w1 + ball_mass * (vp - vb) * d / bat.moi_about(bat.balance_point)
+    return w2, cor
+
+
 def rigid_sweet_spot(moi_pivot, ball_mass, pitch_speed, bat_angular_speed):
     """Location of maximum exit speed for a rigid pivoted bat (Smith 2001 Eq. 7) [m from pivot]:
     ``r_s = v_p / w1 + sqrt(I / m + (v_p / w1)^2)``. Undefined (nan) when w1 = 0: the exit speed
@@ -131,16 +166,8 @@ class RigidEngine:
     def solve(self, bat: BatModel, ball: BallModel, pivot: float, batch: ImpactBatch,
               support: str = "pinned") -> ImpactOutcome:
         r, vp, w1 = batch.impact_location, batch.pitch_speed, batch.bat_angular_speed
-        moi = bat.moi_about(pivot)
         e = ball.cor(batch.relative_speed)
-        if support == "pinned":
-            k = recoil_factor_pivoted(ball.mass, moi, r)
-        elif support == "free":
-            moi_cg = bat.moi_about(bat.balance_point)
-            k = recoil_factor_free(ball.mass, bat.mass, moi_cg, r + pivot - bat.balance_point)
-        else:
-            raise ValueError(f"unknown support {support!r}")
+        k = recoil_factor(bat, ball.mass, pivot, r, support)
         vb = exit_speed(e, k, vp, w1 * r)
-        w2 = bat_angular_speed_after(moi, ball.mass, r, vp, w1, vb)
-        return ImpactOutcome(exit_speed=vb, bat_angular_speed_after=w2,
-                             cor=cor_from_speeds(r, vp, w1, vb, w2))
+        w2, cor = momentum_outcome(bat, ball.mass, pivot, support, r, vp, w1, vb)
+        return ImpactOutcome(exit_speed=vb, bat_angular_speed_after=w2, cor=cor)

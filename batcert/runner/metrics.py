@@ -31,13 +31,13 @@ class ImpactMetrics:
 
 
 def impact_metrics(impact_location, pitch_speed, bat_angular_speed, exit_speed,
-                   bat_angular_speed_after, cor, ball_cor_at, ball_mass, moi_pivot) -> ImpactMetrics:
-    """All metrics for a batch. ``ball_cor_at`` maps relative speed [m/s] to the ball's COR."""
+                   bat_angular_speed_after, cor, ball_cor_at, k) -> ImpactMetrics:
+    """All metrics for a batch. ``ball_cor_at`` maps relative speed [m/s] to the ball's COR;
+    ``k`` is the bat's recoil factor at each impact (:func:`rigid.recoil_factor`)."""
     r = np.asarray(impact_location, float)
     rel = bat_angular_speed * r - pitch_speed
     e_b = ball_cor_at(rel)
     e_a = rigid.collision_efficiency_from_speeds(r, pitch_speed, bat_angular_speed, exit_speed)
-    k = rigid.recoil_factor_pivoted(ball_mass, moi_pivot, r)
     return ImpactMetrics(
         impact_location=r, pitch_speed=np.asarray(pitch_speed, float),
         bat_angular_speed=np.asarray(bat_angular_speed, float), relative_speed=rel,

@@ -39,9 +39,11 @@ class _Context:
         vp, w1 = np.stack(vp), np.stack(w1)
         batch = ImpactBatch(r.ravel(), vp.ravel(), w1.ravel())
         out = self.engine.solve(self.built.model, self.ball.model, self.pivot, batch, self.support)
+        k = rigid.recoil_factor(self.built.model, self.ball.model.mass, self.pivot,
+                                batch.impact_location, self.support)
         m = impact_metrics(batch.impact_location, batch.pitch_speed, batch.bat_angular_speed,
                            out.exit_speed, out.bat_angular_speed_after, out.cor,
-                           self.ball.model.cor, self.ball.model.mass, self.moi)
+                           self.ball.model.cor, k)
         shape = r.shape
         return ImpactMetrics(**{k: np.asarray(v).reshape(shape) for k, v in vars(m).items()})
 

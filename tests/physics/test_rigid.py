@@ -173,3 +173,29 @@ def test_engine_matches_closed_form_and_ball_cor():
     lhs = moi * batch.bat_angular_speed + ball.mass * batch.pitch_speed * r
     rhs = moi * out.bat_angular_speed_after + ball.mass * out.exit_speed * r
     np.testing.assert_allclose(rhs, lhs, rtol=1e-12)
+
+
+def test_free_bat_reports_the_cor_it_used_and_conserves_momentum():
+    """RigidEngine, support "free": the reported COR is the ball's COR used in the collision
+    (before the fix it was Eq. 3 with the pinned w2, 0.497 instead of 0.510); linear momentum and
+    angular momentum about the CG are conserved with the free bat's w2 (its angular velocity)."""
+    bat = build_geometry("rod", "solid", 0.84, [0.0, 0.84], [0.05, 0.065], LIBRARY["ash"][0])
+    ball = BallModel("b", 0.145, 0.0366, (10.0, 60.0), (0.6, 0.5))
+    pivot = 0.093  # instantaneous centre of Nathan's game-speed swing (24 m/s at 51 rad/s)
+    r = np.linspace(0.3, 0.72, 22)
+    batch = ImpactBatch(r, np.full(r.size, -40.0), np.full(r.size, 51.0))
+    out = get_engine("rigid").solve(bat, ball, pivot, batch, support="free")
+    np.testing.assert_allclose(out.cor, ball.cor(batch.relative_speed), rtol=1e-12)
+    m, big_m, zcg = ball.mass, bat.mass, bat.balance_point
+    icg = bat.moi_about(zcg)
+    d = r + pivot - zcg
+    v_cg = 51.0 * (zcg - pivot)
+    dv_cg = m * (batch.pitch_speed - out.exit_speed) / big_m  # impulse / M
+    # angular momentum about the CG: I_cg w1 + m v_p d = I_cg w2 + m v_b d
+    np.testing.assert_allclose(icg * out.bat_angular_speed_after + m * out.exit_speed * d,
+                               icg * 51.0 + m * batch.pitch_speed * d, rtol=1e-12)
+    # the impact point's speed after impact gives back the COR (Eq. 3 generalised)
+    point_after = v_cg + dv_cg + out.bat_angular_speed_after * d
+    np.testing.assert_allclose((point_after - out.exit_speed)
+                               / (batch.pitch_speed - batch.bat_angular_speed * r), out.cor,
+                               rtol=1e-12)

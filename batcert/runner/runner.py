@@ -107,9 +107,11 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
         chosen, edge = np.full(n, mp.cop), np.zeros(n, bool)
     else:  # fixed-from-tip
         chosen, edge = np.full(n, bat.length - pivot - loc["from_tip"]), np.zeros(n, bool)
-    if np.any(chosen <= 0) or np.any(chosen >= bat.length - pivot):
-        raise ProtocolError(f"the {loc['rule']} impact point ({chosen.max() * 100:.1f} cm from the "
-                            "pivot) is not on the bat")
+    off = (chosen <= 0) | (chosen >= bat.length - pivot)
+    if np.any(off):
+        bad = float(chosen[np.argmax(off)])
+        raise ProtocolError(f"the {loc['rule']} impact point ({bad * 100:.1f} cm from the pivot) is "
+                            f"not between the pivot and the tip ({(bat.length - pivot) * 100:.1f} cm)")
     final = ctx.solve(conds, chosen[:, None])
     values = metric(final)[:, 0]
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 from batcert.errors import Collector
 from batcert.specs.common import sha256_of
-from batcert.specs.schema import (Field, Schema, choice, list_of, lookup, number, one_of, quantity,
+from batcert.specs.schema import (Field, Schema, choice, integer, list_of, lookup, number, one_of, quantity,
                                   section, text, validate)
 from batcert.specs.yamlio import Located, load_yaml
 
@@ -82,7 +82,7 @@ LOCATION_SCHEMA = Schema("impact-location rule", (
     Field("window", list_of(quantity("length", minimum=0.0), min_items=2,
                             describe="[nearest, farthest] distance from the tip"),
           "Search window as distances from the tip.", default=[0.03, 0.30]),
-    Field("sweep_points", number(minimum=5, maximum=2001), "Coarse sweep points over the window.",
+    Field("sweep_points", integer(minimum=5, maximum=2001), "Coarse sweep points over the window.",
           default=71),
     Field("resolution", quantity("length", positive=True), "Located to at least this.",
           default=0.001),

@@ -151,6 +151,21 @@ def number(*, minimum: float | None = None, maximum: float | None = None,
     return Kind("number" + (f" ({', '.join(rng)})" if rng else ""), parse)
 
 
+def integer(*, minimum: int | None = None, maximum: int | None = None) -> Kind:
+    def parse(value: Any, errors: Collector, path: str) -> int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise FieldError(f"expected a whole number, got {value!r}")
+        if minimum is not None and value < minimum:
+            raise FieldError(f"must be at least {minimum}, got {value}")
+        if maximum is not None and value > maximum:
+            raise FieldError(f"must be at most {maximum}, got {value}")
+        return value
+
+    rng = [f">= {minimum}"] if minimum is not None else []
+    rng += [f"<= {maximum}"] if maximum is not None else []
+    return Kind("whole number" + (f" ({', '.join(rng)})" if rng else ""), parse)
+
+
 def text() -> Kind:
     def parse(value: Any, errors: Collector, path: str) -> str:
         if isinstance(value, (Located, LocatedList)) or isinstance(value, bool):

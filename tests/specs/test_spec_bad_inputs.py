@@ -104,6 +104,9 @@ CASES: dict[str, list[Expect]] = {
         Expect(13, "metric", "must be one of exit-speed, besr, bpf, bbcor, collision-efficiency; "
                              "got 'bbcorr'; did you mean 'bbcor'?"),
     ],
+    "protocol-fractional-sweep-points.yaml": [
+        Expect(13, "impact_location.sweep_points", "expected a whole number, got 70.5"),
+    ],
     "protocol-unknown-ball.yaml": [
         Expect(6, "ball", "unknown ball 'colegiate-baseball' (shipped: collegiate-baseball, "
                           "nathan-2000); did you mean 'collegiate-baseball'?"),

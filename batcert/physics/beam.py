@@ -324,7 +324,7 @@ def _point_loads(z_nodes: np.ndarray, z_points) -> np.ndarray:
     return f
 
 
-def residual_compliance(bat: BatModel, modes: Modes, z_points) -> np.ndarray:
+def residual_compliance(bat: BatModel, modes: Modes, z_points, weights=None) -> np.ndarray:
     """Static compliance at ``z_points`` of the bending modes that ``modes`` left out.
 
     The elastic (inertia-relief) flexibility of the FE beam, ``G = sum over all bending modes of
@@ -343,7 +343,12 @@ def residual_compliance(bat: BatModel, modes: Modes, z_points) -> np.ndarray:
     modes : Modes
         Modes from :func:`compute_modes` (its node set defines the mesh).
     z_points : array_like
-        Impact positions from the knob [m], shape (p,).
+        Impact positions from the knob [m], shape (p,); or, with ``weights``, the sample points
+        of a distributed load, shape (p, K).
+    weights : array_like, optional
+        Shape (p, K), each row summing to 1: the load of impact ``i`` is spread over
+        ``z_points[i]`` with these weights (a contact patch); the compliance is then the
+        work-conjugate one, ``f^T G f`` for the unit resultant ``f``.
 
     Returns
     -------
@@ -351,25 +356,59 @@ def residual_compliance(bat: BatModel, modes: Modes, z_points) -> np.ndarray:
         Residual compliance [m/N], shape (p,), >= 0.
     """
     _check(bat, modes.support, modes.pivot)
+    zp = np.asarray(z_points, dtype=float)
+    if weights is None:
+        zp, w = zp.reshape(-1, 1), np.ones((zp.size, 1))
+    else:
+        w = np.asarray(weights, dtype=float)
+    flex = _flexibility(bat, modes)
+    n_points, n_samples = zp.shape
+    f = _point_loads(flex.z, zp.ravel()).reshape(-1, n_points, n_samples)
+    f = (f * w[None]).sum(axis=2)[flex.keep]
+    f_eq = f - flex.m @ (flex.rigid @ (flex.rigid.T @ f))
+    x = np.zeros_like(f_eq)
+    x[flex.solve] = flex.lu.solve(f_eq[flex.solve])
+    x -= flex.rigid @ (flex.rigid.T @ (flex.m @ x))
+    full = np.einsum("dp,dp->p", f, x)
+    elastic = slice(modes.n_rigid, None)
+    phi = (modes.at(zp.ravel()).reshape(n_points, n_samples, -1) * w[..., None]).sum(axis=1)
+    kept = (phi[:, elastic] ** 2 / modes.omega[elastic] ** 2).sum(axis=1)
+    return np.clip(full - kept, 0.0, None)
+
+
+@dataclass(frozen=True)
+class _Flexibility:
+    z: np.ndarray  # mesh nodes [m]
+    keep: np.ndarray  # retained DOFs
+    rigid: np.ndarray  # rigid modes on the retained DOFs
+    m: object  # mass matrix on the retained DOFs (sparse)
+    solve: np.ndarray  # DOFs solved for (determinate supports removed)
+    lu: object  # sparse LU of the stiffness on `solve`
+
+
+_FLEX_CACHE: dict = {}
+
+
+def _flexibility(bat: BatModel, modes: Modes) -> _Flexibility:
+    """The factorised static problem behind :func:`residual_compliance`, cached per modes."""
+    hit = _FLEX_CACHE.get(id(modes))
+    if hit is not None and hit[0] is modes:
+        return hit[1]
     fe = assemble(bat, modes.z)
     keep = _free_dofs(fe, modes.support, modes.pivot)
     rigid = _rigid_modes(fe, modes.support, modes.pivot)[keep]
     k = fe.stiffness[keep][:, keep]
     m = fe.mass[keep][:, keep]
-    f = _point_loads(fe.z, z_points)[keep]
-    f_eq = f - m @ (rigid @ (rigid.T @ f))
     # determinate supports: w at both ends (free) or w at the end farther from the pin (pinned)
     w_end = [0, keep.size - 2] if modes.support == "free" else (
         [keep.size - 2] if modes.pivot < 0.5 * (fe.z[0] + fe.z[-1]) else [0])
     solve = np.setdiff1d(np.arange(keep.size), w_end)
-    x = np.zeros_like(f_eq)
-    x[solve] = scipy.sparse.linalg.splu(k[solve][:, solve].tocsc()).solve(f_eq[solve])
-    x -= rigid @ (rigid.T @ (m @ x))
-    full = np.einsum("dp,dp->p", f, x)
-    elastic = slice(modes.n_rigid, None)
-    phi = modes.at(z_points)[:, elastic]
-    kept = (phi**2 / modes.omega[elastic] ** 2).sum(axis=1)
-    return np.clip(full - kept, 0.0, None)
+    lu = scipy.sparse.linalg.splu(k[solve][:, solve].tocsc())
+    flex = _Flexibility(fe.z, keep, rigid, m, solve, lu)
+    _FLEX_CACHE[id(modes)] = (modes, flex)
+    while len(_FLEX_CACHE) > 32:
+        _FLEX_CACHE.pop(next(iter(_FLEX_CACHE)))
+    return flex
 
 
 def mode_nodes(modes: Modes, j: int) -> np.ndarray:

@@ -331,6 +331,14 @@ class FlexibleEngine:
     max_contact_time : float
         Safety cap on the integration [s]; impacts still in contact then are reported with
         ``diagnostics["separated"] = False``.
+    contact_patch : bool
+        Spread the contact force along the bat over the ball's flattened contact length
+        ``2 a``, ``a = sqrt(2 R u_m - u_m^2)`` with ``u_m`` the ball's maximum compression against
+        a rigid wall at the impact's relative speed, with a semicircular (Hertz-like) weight,
+        centred on the impact point (shrunk near the bat's ends so it stays on the bat).
+        False: a point force at the impact location (Nathan 2000).
+    patch_points : int
+        Sample points across the patch (Gauss-Chebyshev of the second kind).
     record_states : bool
         Add the state at separation to the diagnostics (energy checks): ``modal_velocity`` of
         every beam mode [sqrt(kg) m/s], ``bending_displacement`` [sqrt(kg) m],
@@ -341,7 +349,8 @@ class FlexibleEngine:
 
     def __init__(self, n_modes: int = 24, time_step: float = 1e-5, refine: int = 1,
                  residual: bool = True, barrel_model: str = "modal",
-                 max_contact_time: float = 0.02, record_states: bool = False) -> None:
+                 max_contact_time: float = 0.02, record_states: bool = False,
+                 contact_patch: bool = True, patch_points: int = 15) -> None:
         if n_modes < 1 or int(n_modes) != n_modes:
             raise ValueError(f"n_modes must be a positive integer, got {n_modes!r}")
         if not 0 < time_step <= 1e-4:
@@ -351,6 +360,7 @@ class FlexibleEngine:
         self.n_modes, self.time_step, self.refine = int(n_modes), float(time_step), int(refine)
         self.residual, self.barrel_model = bool(residual), barrel_model
         self.max_contact_time, self.record_states = float(max_contact_time), bool(record_states)
+        self.contact_patch, self.patch_points = bool(contact_patch), int(patch_points)
 
     def settings(self) -> dict:
         return {"engine": "flexible", "n_modes": self.n_modes, "time_step": self.time_step,
@@ -358,33 +368,24 @@ class FlexibleEngine:
                 "barrel_model": self.barrel_model, "max_contact_time": self.max_contact_time,
                 "integrator": "ETDRK4 (Cox & Matthews 2002), exact modal propagation",
                 "contact": "Nathan 2000 power-law hysteresis, e0 = ball COR at relative speed",
-                "damping": "zeta = material loss factor / 2 on every flexible mode"}
+                "damping": "zeta = material loss factor / 2 on every flexible mode",
+                "contact_patch": (f"force spread over the ball's flattened contact length "
+                                  f"({self.patch_points} points, semicircular weight)"
+                                  if self.contact_patch else "point force")}
 
-    def _residual(self, bat: BatModel, modes: Modes, z: np.ndarray) -> np.ndarray:
-        """Residual compliance of the truncated modes at ``z`` [m/N], exact for any ``z``.
-
-        A load between nodes i and i+1 is shared linearly (weights ``1 - t``, ``t``), as in
-        ``Modes.at``, so the compliance there is the quadratic form
-        ``(1-t)^2 R_ii + 2 t (1-t) R_i,i+1 + t^2 R_i+1,i+1`` of the residual flexibility. Node
-        and midpoint values (the latter give ``R_i,i+1``) come from
-        :func:`batcert.physics.beam.residual_compliance`, once per modes object.
-        """
-        from batcert.physics import beam
-        cached = _RESIDUAL_CACHE.get(id(modes))
-        if cached is None or cached[0] is not modes:
-            nodes = np.asarray(modes.z, dtype=float)
-            mids = 0.5 * (nodes[1:] + nodes[:-1])
-            both = beam.residual_compliance(bat, modes, np.concatenate([nodes, mids]))
-            r_node, r_mid = both[:nodes.size], both[nodes.size:]
-            cached = (modes, nodes, r_node, 2.0 * r_mid - 0.5 * (r_node[1:] + r_node[:-1]))
-            _RESIDUAL_CACHE[id(modes)] = cached
-            while len(_RESIDUAL_CACHE) > 64:
-                _RESIDUAL_CACHE.pop(next(iter(_RESIDUAL_CACHE)))
-        _, nodes, r_node, r_off = cached
-        i = np.clip(np.searchsorted(nodes, z, side="right") - 1, 0, nodes.size - 2)
-        t = np.clip((z - nodes[i]) / (nodes[i + 1] - nodes[i]), 0.0, 1.0)
-        res = (1 - t) ** 2 * r_node[i] + 2 * t * (1 - t) * r_off[i] + t**2 * r_node[i + 1]
-        return np.clip(res, 0.0, None)
+    def _patch(self, bat: BatModel, ball: BallModel, z: np.ndarray, speed: np.ndarray):
+        """Sample points (p, K) [m from knob] and weights (p, K) of the contact force."""
+        if not self.contact_patch:
+            return z[:, None], np.ones((z.size, 1))
+        u = np.minimum(contact.max_compression(speed, ball.mass, ball.k1, ball.alpha), ball.radius)
+        half = np.sqrt(2.0 * ball.radius * u - u**2)
+        # keep the patch centred on the impact point: shrink it near the bat's ends
+        half = np.minimum(half, np.minimum(z - bat.z_edges[0], bat.z_edges[-1] - z))
+        k = np.arange(1, self.patch_points + 1)
+        xi = np.cos(k * np.pi / (self.patch_points + 1))
+        w = np.sin(k * np.pi / (self.patch_points + 1)) ** 2
+        points = z[:, None] + half[:, None] * xi[None, :]
+        return points, np.broadcast_to(w / w.sum(), points.shape)
 
     def linear_system(self, bat: BatModel, ball: BallModel, pivot: float, batch: ImpactBatch,
                       support: str = "pinned", modes: Modes | None = None):
@@ -424,7 +425,8 @@ class FlexibleEngine:
         zeta = 0.5 * bat.material.loss_factor
         if not 0 <= zeta < 1:
             raise ValueError(f"loss factor {bat.material.loss_factor} out of range [0, 2)")
-        phi = modes.at(z)
+        points, weights = self._patch(bat, ball, z, batch.relative_speed)
+        phi = (modes.at(points.ravel()).reshape(*points.shape, -1) * weights[..., None]).sum(1)
         nr = modes.n_rigid
         gain, omega = phi[:, nr:], np.broadcast_to(modes.omega[nr:], (z.size, phi.shape[1] - nr))
         rigid_mass = 1.0 / (phi[:, :nr] ** 2).sum(1)
@@ -432,7 +434,9 @@ class FlexibleEngine:
                   "beam_rigid_mass": rigid_mass, "residual_omega": 0.0}
         if self.residual:
             om_res = 2.0 * float(modes.omega[-1])
-            gain = _column(gain, om_res * np.sqrt(self._residual(bat, modes, z)))
+            from batcert.physics import beam
+            res = beam.residual_compliance(bat, modes, points, weights)
+            gain = _column(gain, om_res * np.sqrt(res))
             omega = _column(omega, np.full(z.size, om_res))
             extras["residual_omega"] = om_res
         system = LinearSystem(omega=np.ascontiguousarray(omega), zeta=zeta,
@@ -521,7 +525,6 @@ class FlexibleEngine:
                              diagnostics=diag)
 
 
-_RESIDUAL_CACHE: dict = {}
 
 
 def _column(a, col):

@@ -106,9 +106,10 @@ def _clean(v: float) -> float:
 
 def nice_domain(lo: float, hi: float, pad: float = 0.05, max_ticks: int = 6) -> tuple[float, float]:
     """Widen ``[lo, hi]`` by ``pad`` of its span and out to the neighbouring round ticks."""
-    if lo == hi:
-        half = abs(lo) * 0.1 or 1.0
-        lo, hi = lo - half, hi + half
+    if hi - lo <= 1e-9 * max(abs(lo), abs(hi)):  # equal, or apart only by rounding noise
+        mid = (lo + hi) / 2
+        half = abs(mid) * 0.1 or 1.0
+        lo, hi = mid - half, mid + half
     span = hi - lo
     lo, hi = lo - pad * span, hi + pad * span
     step = _nice_step(span / max(max_ticks - 1, 1))
@@ -280,6 +281,9 @@ def line_chart(
             d = f' stroke-dasharray="{dash(i)}"' if dash(i) else ""
             c.raw(f'<polyline points="{pts}" fill="none" stroke="{color(i)}" stroke-width="2.2" '
                   f'stroke-linejoin="round"{d}/>')
+            if len(run) == 1:  # a lone point draws no line: mark it so it is not lost
+                x, y = run[0]
+                c.raw(f'<circle cx="{_f(px(x))}" cy="{_f(py(y))}" r="2.5" fill="{color(i)}"/>')
     for p in points:
         if x_lo <= p.x <= x_hi and y_lo <= p.y <= y_hi:
             c.raw(f'<circle cx="{_f(px(p.x))}" cy="{_f(py(p.y))}" r="4.5" fill="#ffffff" '
@@ -378,7 +382,7 @@ def bar_chart(
     y_lo, y_hi = nice_domain(lo, hi, pad=0.08)
     if baseline is not None and lo >= baseline:
         y_lo = baseline
-    if baseline is not None and hi <= baseline:
+    elif baseline is not None and hi <= baseline:  # elif: all values at the baseline keep y_hi
         y_hi = baseline
     base = baseline if baseline is not None else y_lo
 

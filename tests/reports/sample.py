@@ -31,10 +31,12 @@ def _exit_speed(r: float, pitch_speed: float, w1: float) -> float:
     return ((1 + e) * i * w1 * r + pitch_speed * (m * r * r - e * i)) / (i + m * r * r)
 
 
-def _condition(name: str, setup: str, pitch_speed: float, w1: float) -> ConditionResult:
+def _condition(name: str, setup: str, pitch_speed: float, w1: float,
+               metric: str = "bpf") -> ConditionResult:
     locations = [0.40 + 0.005 * k for k in range(71)]  # 0.40 .. 0.75 m from the pivot
     exit_speeds = [_exit_speed(r, pitch_speed, w1) for r in locations]
-    metric = [_cor(r) / BALL_COR for r in locations]
+    by_exit_speed = metric == "exit-speed"
+    values = exit_speeds if by_exit_speed else [_cor(r) / BALL_COR for r in locations]
     best = max(range(len(locations)), key=exit_speeds.__getitem__)
     r, v_b, e = locations[best], exit_speeds[best], _cor(locations[best])
     k = BALL_MASS * r * r / MOI
@@ -46,10 +48,11 @@ def _condition(name: str, setup: str, pitch_speed: float, w1: float) -> Conditio
         bat_angular_speed_after=w1 + BALL_MASS * (pitch_speed - v_b) * r / MOI,
         cor=e, ball_cor=BALL_COR, bpf=e / BALL_COR,
         besr=(v_b - (w1 * r + pitch_speed) / 2) / (w1 * r - pitch_speed),
-        bbcor=e_a * (1 + k) + k, collision_efficiency=e_a, metric_value=e / BALL_COR,
+        bbcor=e_a * (1 + k) + k, collision_efficiency=e_a,
+        metric_value=v_b if by_exit_speed else e / BALL_COR,
         cop=MOI / (MASS * CG), sweet_spot=r, rigid_sweet_spot=rigid,
         at_window_edge=best in (0, len(locations) - 1),
-        sweep=Sweep(impact_location=locations, exit_speed=exit_speeds, metric=metric),
+        sweep=Sweep(impact_location=locations, exit_speed=exit_speeds, metric=values),
     )
 
 
@@ -58,12 +61,16 @@ def _sha(text: str) -> str:
 
 
 def sample_result(*, limit: float | None = 1.05, warnings: list[str] | None = None,
-                  metric: str = "bpf") -> RunResult:
-    """The ash bat under the proposed protocol; ``limit=None`` gives a result without verdict."""
+                  metric: str = "bpf", extras: dict | None = None) -> RunResult:
+    """The ash bat under the proposed protocol; ``limit=None`` gives a result without verdict.
+
+    ``metric="exit-speed"`` makes the sweeps' metric the exit speed [m/s] (pass a limit in m/s);
+    ``extras`` replaces the default engine diagnostics.
+    """
     conditions = [
-        _condition("stationary bat", "stationary-bat", -60.0, 0.0),
-        _condition("stationary ball", "stationary-ball", 0.0, 60.0 / NODE),
-        _condition("pitched and swung", "pitched-and-swung", -30.0, 30.0 / NODE),
+        _condition("stationary bat", "stationary-bat", -60.0, 0.0, metric),
+        _condition("stationary ball", "stationary-ball", 0.0, 60.0 / NODE, metric),
+        _condition("pitched and swung", "pitched-and-swung", -30.0, 30.0 / NODE, metric),
     ]
     value = sum(c.metric_value for c in conditions) / len(conditions)
     tolerance = 0.005 if limit is not None else 0.0
@@ -100,6 +107,7 @@ def sample_result(*, limit: float | None = 1.05, warnings: list[str] | None = No
         batcert_version="0.1.0",
         created="2025-03-14T09:26:53Z",
         warnings=list(warnings or []),
-        extras={"modes_hz": [172.4, 571.9, 1180.6, 1851.2], "contact_time_ms": 0.71,
-                "barrel": {"model": "solid", "hoop_frequency_hz": None}},
+        extras=dict(extras) if extras is not None else {
+            "modes_hz": [172.4, 571.9, 1180.6, 1851.2], "contact_time_ms": 0.71,
+            "barrel": {"model": "solid", "hoop_frequency_hz": None}},
     )

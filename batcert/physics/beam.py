@@ -324,6 +324,20 @@ def _point_loads(z_nodes: np.ndarray, z_points) -> np.ndarray:
     return f
 
 
+def _distributed_loads(z_nodes: np.ndarray, z_points: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """Unit resultant loads spread over ``z_points`` (p, K) with ``weights`` (p, K), each sample
+    shared linearly between its two nearest nodes (as :func:`_point_loads`). Shape (ndof, p)."""
+    zp = z_points.ravel()
+    i = np.clip(np.searchsorted(z_nodes, zp, side="right") - 1, 0, z_nodes.size - 2)
+    t = np.clip((zp - z_nodes[i]) / (z_nodes[i + 1] - z_nodes[i]), 0.0, 1.0)
+    w = weights.ravel()
+    cols = np.repeat(np.arange(z_points.shape[0]), z_points.shape[1])
+    f = np.zeros((2 * z_nodes.size, z_points.shape[0]))
+    np.add.at(f, (2 * i, cols), (1.0 - t) * w)
+    np.add.at(f, (2 * i + 2, cols), t * w)
+    return f
+
+
 def residual_compliance(bat: BatModel, modes: Modes, z_points, weights=None) -> np.ndarray:
     """Static compliance at ``z_points`` of the bending modes that ``modes`` left out.
 
@@ -363,8 +377,7 @@ def residual_compliance(bat: BatModel, modes: Modes, z_points, weights=None) -> 
         w = np.asarray(weights, dtype=float)
     flex = _flexibility(bat, modes)
     n_points, n_samples = zp.shape
-    f = _point_loads(flex.z, zp.ravel()).reshape(-1, n_points, n_samples)
-    f = (f * w[None]).sum(axis=2)[flex.keep]
+    f = _distributed_loads(flex.z, zp, w)[flex.keep]
     f_eq = f - flex.m @ (flex.rigid @ (flex.rigid.T @ f))
     x = np.zeros_like(f_eq)
     x[flex.solve] = flex.lu.solve(f_eq[flex.solve])

@@ -61,6 +61,31 @@ def _formats(value: str) -> list[str]:
     return items
 
 
+def _output_options(printed: str, engine_help: str = "Impact engine tier."):
+    """The options shared by run, compare and league: engine, report directory and formats,
+    --no-reports and --json (one definition, so the three commands cannot drift apart)."""
+    options = [
+        click.option("--engine", type=click.Choice(["rigid", "flexible"]), default="flexible",
+                     show_default=True, help=engine_help),
+        click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
+                     default=Path("reports"), show_default=True,
+                     help="Directory for the reports."),
+        click.option("--format", "formats", default="md,html,json", show_default=True,
+                     help="Report formats, comma-separated: md, html, json."),
+        click.option("--no-reports", is_flag=True,
+                     help=f"Print the {printed} only; write no files."),
+        click.option("--json", "as_json", is_flag=True,
+                     help=f"Print only the {printed} JSON on stdout."),
+    ]
+
+    def decorate(func):
+        for option in reversed(options):
+            func = option(func)
+        return func
+
+    return decorate
+
+
 @click.group(epilog=EXIT_CODES, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="batcert")
 def main() -> None:
@@ -72,14 +97,7 @@ def main() -> None:
 @click.option("--protocol", "-p", "protocols", multiple=True, required=True,
               help="Shipped protocol id (see `batcert protocols`) or a protocol YAML path; repeat "
                    "for several.")
-@click.option("--engine", type=click.Choice(["rigid", "flexible"]), default="flexible",
-              show_default=True, help="Impact engine tier.")
-@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
-              default=Path("reports"), show_default=True, help="Directory for the reports.")
-@click.option("--format", "formats", default="md,html,json", show_default=True,
-              help="Report formats, comma-separated: md, html, json.")
-@click.option("--no-reports", is_flag=True, help="Print the verdict only; write no files.")
-@click.option("--json", "as_json", is_flag=True, help="Print only the results JSON on stdout.")
+@_output_options("results")
 @_guard
 def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
     """Run BAT (a bat YAML path or shipped bat name) under one or more protocols, print the
@@ -254,14 +272,7 @@ def _engine_guard(func):
               "path: its protocols, default bats and claims.")
 @click.option("--reference", default=None, help="Reference bat of P = (P_bat - P_ref) / P_ref "
               "(Smith 2001 Eq. 6); default the first bat; added to the bats if not among them.")
-@click.option("--engine", default="flexible", show_default=True,
-              help="Impact engine tier: rigid or flexible.")
-@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
-              default=Path("reports"), show_default=True, help="Directory for the reports.")
-@click.option("--format", "formats", default="md,html,json", show_default=True,
-              help="Report formats, comma-separated: md, html, json.")
-@click.option("--no-reports", is_flag=True, help="Print the comparison only; write no files.")
-@click.option("--json", "as_json", is_flag=True, help="Print only the comparison JSON on stdout.")
+@_output_options("comparison")
 @_guard
 @_engine_guard
 def compare(bats, protocols, study, reference, engine, out_dir, formats, no_reports, as_json):
@@ -286,16 +297,9 @@ def compare(bats, protocols, study, reference, engine, out_dir, formats, no_repo
 @main.command(epilog=LEAGUE_EXIT_CODES)
 @click.argument("league_id", metavar="LEAGUE")
 @click.argument("bats", nargs=-1, required=True)
-@click.option("--engine", default="flexible", show_default=True,
-              help="Impact engine tier for performance rules: rigid or flexible.")
 @click.option("--allow-not-modelled", is_flag=True, help="Exit 0 when nothing fails, even if "
               "some rules are not modelled (they are still reported).")
-@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
-              default=Path("reports"), show_default=True, help="Directory for the reports.")
-@click.option("--format", "formats", default="md,html,json", show_default=True,
-              help="Report formats, comma-separated: md, html, json.")
-@click.option("--no-reports", is_flag=True, help="Print the verdicts only; write no files.")
-@click.option("--json", "as_json", is_flag=True, help="Print only the league JSON on stdout.")
+@_output_options("league verdicts", "Impact engine tier for performance rules.")
 @_guard
 @_engine_guard
 def league(league_id, bats, engine, allow_not_modelled, out_dir, formats, no_reports, as_json):

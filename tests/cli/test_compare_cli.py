@@ -99,7 +99,7 @@ def test_usage_errors_exit_2(batcert_cli):
     assert batcert_cli("compare", ASH, ALU, "-p", "proposed", "-p", "proposed",
                        "--engine", "rigid").exit_code == 2
     result = batcert_cli("compare", ASH, ALU, "-p", "proposed", "--engine", "warp")
-    assert result.exit_code == 2 and "not available" in result.stderr
+    assert result.exit_code == 2 and "'warp' is not one of 'rigid', 'flexible'" in result.stderr
 
 
 def test_invalid_input_exits_3_and_writes_nothing(batcert_cli, tmp_path):

@@ -98,9 +98,14 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
     fine = ctx.solve(conds * len(targets), fine_r)
     sweet, _ = parabolic_peak(fine_r[:n], fine.exit_speed[:n])
     edge_sweet = np.isin(np.argmax(coarse.exit_speed, axis=1), (0, grid.size - 1))
+    flat = np.zeros(n, bool)
     if loc["rule"] == "max-metric":
         chosen, _ = parabolic_peak(fine_r[n:], metric(fine)[n:])
         edge = np.isin(np.argmax(metric(coarse), axis=1), (0, grid.size - 1))
+        m_coarse = metric(coarse)
+        flat = np.ptp(m_coarse, axis=1) <= 1e-9 * np.abs(m_coarse).max(axis=1)
+        # a metric that does not vary along the bat has no maximum: use the sweet spot
+        chosen, edge = np.where(flat, sweet, chosen), np.where(flat, edge_sweet, edge)
     elif loc["rule"] == "sweet-spot":
         chosen, edge = sweet, edge_sweet
     elif loc["rule"] == "cop":
@@ -121,6 +126,9 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
                                           final.bat_angular_speed[i, 0])
         if c.relative_speed is not None:
             rigid_ss = np.nan  # Eq. 7 assumes fixed speeds; matched conditions vary w1 with r
+        if flat[i]:
+            warnings.append(f"{c.name}: {p['metric']} does not vary with impact location, so it "
+                            "has no maximum; the sweet spot (maximum exit speed) is used")
         if edge[i]:
             warnings.append(f"{c.name}: the located impact point lies on the search window's edge "
                             f"({chosen[i] * 100:.1f} cm from the pivot); the true maximum is "

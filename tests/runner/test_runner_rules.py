@@ -315,3 +315,14 @@ def test_results_round_trip(ash):
     assert again == res
     assert math.isfinite(again.value)
     assert [i.role for i in res.inputs] == ["bat", "protocol", "ball"]
+
+
+def test_flat_metric_uses_the_sweet_spot_with_a_warning():
+    # Rigid engine, stationary bat: BBCOR equals the ball's COR at every location (Smith 2001
+    # Eq. 3 with Eq. 1), so max-metric has no maximum; the runner says so and uses the sweet spot.
+    from batcert import jobs
+    result = jobs.run(jobs.load_bat_any("ash-34"), [jobs.load_protocol_any("ncaa-bbcor")],
+                      "rigid")[0]
+    c = result.conditions[0]
+    assert c.impact_location == c.sweet_spot
+    assert any("does not vary with impact location" in w for w in result.warnings)

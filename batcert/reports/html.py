@@ -39,7 +39,8 @@ def exit_speed_chart(result: RunResult) -> str:
     """Exit speed against impact location, one line per condition, impact points circled."""
     series = [svg.Series(c.name, c.sweep.impact_location, c.sweep.exit_speed)
               for c in result.conditions]
-    points = [svg.Point(c.impact_location, c.exit_speed, i) for i, c in enumerate(result.conditions)]
+    points = [svg.Point(c.impact_location, c.exit_speed, i)
+              for i, c in enumerate(result.conditions)]
     return svg.line_chart(
         series,
         title="Exit speed against impact location",

@@ -174,14 +174,11 @@ class _Canvas:
         self.parts.append(element)
 
     def legend(self, items: Sequence[tuple[str, str, str, str]], left: float, top: float,
-               max_width: float) -> float:
-        """Draw (name, colour, dash, kind) items in wrapping rows; return the height used."""
-        x, y, row_h = left, top, 18.0
-        for name, col, dsh, kind in items:
-            w = 30 + _text_w(name, 12) + 16
-            if x > left and x + w > left + max_width:
-                x, y = left, y + row_h
-            cy = y + 9
+               max_width: float) -> None:
+        """Draw (name, colour, dash, kind) items in wrapping rows."""
+        offsets, _ = _legend_layout([item[0] for item in items], max_width)
+        for (name, col, dsh, kind), (dx, dy) in zip(items, offsets, strict=True):
+            x, cy = left + dx, top + dy + 9
             if kind == "bar":
                 self.raw(f'<rect x="{_f(x)}" y="{_f(cy - 6)}" width="22" height="12" '
                          f'fill="{col}"/>')
@@ -193,21 +190,22 @@ class _Canvas:
                 self.raw(f'<line x1="{_f(x)}" y1="{_f(cy)}" x2="{_f(x + 22)}" y2="{_f(cy)}" '
                          f'stroke="{col}" stroke-width="2.5"{d}/>')
             self.text(x + 28, cy + 4, name)
-            x += w
-        return (y - top + row_h) if items else 0.0
 
     def done(self) -> str:
         return "\n".join(self.parts + ["</svg>"])
 
 
-def _legend_height(names: Sequence[str], max_width: float) -> float:
-    x, rows = 0.0, 1
+def _legend_layout(names: Sequence[str], max_width: float) -> tuple[list[tuple[float, float]],
+                                                                   float]:
+    """Offsets of legend items flowing in rows of ``max_width``, and the legend's height."""
+    x, y, row_h, out = 0.0, 0.0, 18.0, []
     for name in names:
         w = 30 + _text_w(name, 12) + 16
         if x > 0 and x + w > max_width:
-            x, rows = 0.0, rows + 1
+            x, y = 0.0, y + row_h
+        out.append((x, y))
         x += w
-    return rows * 18.0 if names else 0.0
+    return out, (y + row_h if names else 0.0)
 
 
 def _finite(values: Sequence[float | None]) -> list[float]:
@@ -246,7 +244,7 @@ def line_chart(
     plot_w = width - left - right
     legend_names = [s.name for s in series] + ([point_legend] if point_legend and points else [])
     title_h = 26.0 if title else 8.0
-    legend_h = _legend_height(legend_names, plot_w)
+    legend_h = _legend_layout(legend_names, plot_w)[1]
     label_rows = _marker_rows(vlines, x_lo, x_hi, left, plot_w)
     n_label_rows = 1 + max((r for r, _ in label_rows), default=-1)
     top = title_h + legend_h + 6 + 14 * n_label_rows
@@ -389,7 +387,7 @@ def bar_chart(
     left, right = 66.0, 18.0
     plot_w = width - left - right
     title_h = 26.0 if title else 8.0
-    legend_h = _legend_height([s.name for s in series], plot_w)
+    legend_h = _legend_layout([s.name for s in series], plot_w)[1]
     top, bottom = title_h + legend_h + 10, 40.0
     plot_h = height - top - bottom
 

@@ -22,13 +22,18 @@ LENGTH, PIVOT = 0.860, 0.150  # [m], [m from knob]
 NODE = 0.56  # [m from pivot] where the illustrative COR peaks
 
 
-def _cor(r: float) -> float:
-    return 0.52 * (1.0 - 30.0 * (r - NODE) ** 2) - 1.5 * max(0.0, r - 0.64) ** 2
+def _cor(r: float, shift: float = 0.0) -> float:
+    """Illustrative COR: peaks near the node, moved by ``shift`` [m] for faster swings."""
+    return 0.52 * (1.0 - 15.0 * (r - NODE - shift) ** 2) - 3.0 * max(0.0, r - 0.64) ** 2
 
 
 def _exit_speed(r: float, pitch_speed: float, w1: float) -> float:
-    e, m, i = _cor(r), BALL_MASS, MOI
+    e, m, i = _cor(r, _shift(w1)), BALL_MASS, MOI
     return ((1 + e) * i * w1 * r + pitch_speed * (m * r * r - e * i)) / (i + m * r * r)
+
+
+def _shift(w1: float) -> float:
+    return 0.0002 * w1
 
 
 def _condition(name: str, setup: str, pitch_speed: float, w1: float,
@@ -36,12 +41,14 @@ def _condition(name: str, setup: str, pitch_speed: float, w1: float,
     locations = [0.40 + 0.005 * k for k in range(71)]  # 0.40 .. 0.75 m from the pivot
     exit_speeds = [_exit_speed(r, pitch_speed, w1) for r in locations]
     by_exit_speed = metric == "exit-speed"
-    values = exit_speeds if by_exit_speed else [_cor(r) / BALL_COR for r in locations]
+    bpf = [_cor(r, _shift(w1)) / BALL_COR for r in locations]
+    values = exit_speeds if by_exit_speed else bpf
     best = max(range(len(locations)), key=exit_speeds.__getitem__)
-    r, v_b, e = locations[best], exit_speeds[best], _cor(locations[best])
+    r, v_b, e = locations[best], exit_speeds[best], _cor(locations[best], _shift(w1))
     k = BALL_MASS * r * r / MOI
     e_a = (e - k) / (1 + k)
-    rigid = None if w1 == 0 else pitch_speed / w1 + math.sqrt(MOI / BALL_MASS + (pitch_speed / w1) ** 2)
+    ratio = pitch_speed / w1 if w1 else 0.0
+    rigid = None if w1 == 0 else ratio + math.sqrt(MOI / BALL_MASS + ratio**2)  # Eq. 7
     return ConditionResult(
         name=name, setup=setup, pitch_speed=pitch_speed, bat_angular_speed=w1,
         relative_speed=w1 * r - pitch_speed, impact_location=r, exit_speed=v_b,

@@ -76,3 +76,11 @@ def test_from_dict_ignores_unknown_keys():
     data = json.loads(render(sample_result(), "json"))
     data["added_in_a_later_version"] = 1
     assert RunResult.from_dict(data) == sample_result()
+
+
+@pytest.mark.parametrize("fmt", ["md", "html"])
+def test_reports_regenerate_from_saved_json(fmt):
+    """Reports only read the result: one rebuilt from its JSON renders byte for byte the same."""
+    result = sample_result(warnings=["edge"])
+    back = RunResult.from_dict(json.loads(render(result, "json")))
+    assert render(back, fmt) == render(result, fmt)

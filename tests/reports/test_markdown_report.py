@@ -10,6 +10,8 @@ from sample import sample_result
 from batcert.reports import render
 from batcert.reports.markdown import md_cell, md_table, md_text, render_markdown
 
+VALUE = f"{sample_result().value:.3f}"  # the mean BPF of the sample, as the report rounds it
+
 
 def cells(line: str) -> list[str]:
     """Cells of a GFM table row, honouring escaped pipes."""
@@ -40,22 +42,23 @@ def md() -> str:
 
 def test_title_and_verdict_pass(md):
     assert md.startswith("# Bat certification report: Ash 34 in (Smith 2001)\n")
-    assert "**Verdict: PASS** \u2014 BPF 1.009 \u2264 limit 1.050 + tolerance 0.005; " \
-           "margin +0.046." in md
+    margin = sample_result(limit=1.05).margin
+    assert f"**Verdict: PASS** \u2014 BPF {VALUE} \u2264 limit 1.050 + tolerance 0.005; " \
+           f"margin {margin:+.3f}." in md
 
 
 def test_verdict_fail():
     result = sample_result(limit=0.95)
     md = render_markdown(result)
     # ">" is escaped so that it cannot start HTML; it renders as ">"
-    assert f"**Verdict: FAIL** \u2014 BPF 1.009 \\> limit 0.950 + tolerance 0.005; " \
+    assert f"**Verdict: FAIL** \u2014 BPF {VALUE} \\> limit 0.950 + tolerance 0.005; " \
            f"margin {result.margin:+.3f}." in md
     assert "PASS" not in md
 
 
 def test_verdict_no_limit():
     md = render_markdown(sample_result(limit=None))
-    assert "**Verdict: NO LIMIT** \u2014 BPF 1.009; the protocol sets no limit." in md
+    assert f"**Verdict: NO LIMIT** \u2014 BPF {VALUE}; the protocol sets no limit." in md
     assert "PASS" not in md and "FAIL" not in md
     assert "margin" not in md
 

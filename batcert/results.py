@@ -63,6 +63,8 @@ class MassProperties:
     measured_moi_pivot: float | None  # [kg m^2]
     reconciliation: str  # one-line description of the correction applied
     corrections: dict[str, float] = field(default_factory=dict)  # named correction values, SI
+    geometry_cop: float | None = None  # COP of the geometry-derived model [m from pivot]
+    measured_cop: float | None = None  # COP from the measured values (Eq. 4) [m from pivot]
 
 
 @dataclass

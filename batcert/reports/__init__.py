@@ -187,7 +187,8 @@ def mass_table(result: RunResult) -> Table:
          show(mp.measured_cg, "length")],
         ["MOI about pivot", show(mp.moi_pivot, "moi", 4), show(mp.geometry_moi_pivot, "moi", 4),
          show(mp.measured_moi_pivot, "moi", 4)],
-        ["Centre of percussion from pivot", show(mp.cop, "length"), DASH, DASH],
+        ["Centre of percussion from pivot", show(mp.cop, "length"),
+         show(mp.geometry_cop, "length"), show(mp.measured_cop, "length")],
     ]
     return t
 

@@ -62,7 +62,11 @@ def mass_properties(built: BuiltBat, pivot: float) -> MassProperties:
         measured_mass=meas.mass if meas else None,
         measured_cg=(meas.balance_point - pivot) if meas and meas.balance_point is not None else None,
         measured_moi_pivot=meas_moi, reconciliation=built.reconciliation.description,
-        corrections=dict(built.reconciliation.corrections))
+        corrections=dict(built.reconciliation.corrections),
+        geometry_cop=float(rigid.centre_of_percussion(g.moi_about(pivot), g.mass, g.cg_from(pivot))),
+        measured_cop=(float(rigid.centre_of_percussion(meas_moi, meas.mass,
+                                                       meas.balance_point - pivot))
+                      if meas_moi is not None else None))
 
 
 def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine: Engine,

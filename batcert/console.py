@@ -55,7 +55,7 @@ def run_summary(result: RunResult, paths: list) -> None:
     limit = "" if result.limit is None else (
         f" against limit {_fmt(result.limit, result.metric)}"
         + (f" + {result.tolerance:g}" if result.tolerance else "")
-        + f", margin {_fmt(result.margin, result.metric) if result.metric != 'exit-speed' else show(result.margin, 'speed', 2)}")
+        + f", margin {_fmt(result.margin, result.metric)}")
     out.print(f"{verdict}  {result.bat} — {result.protocol} ({result.protocol_title})", markup=True)
     out.print(f"  {METRIC_LABEL[result.metric]} ({result.aggregate} of {len(result.conditions)} "
               f"condition{'s' if len(result.conditions) > 1 else ''}) = "

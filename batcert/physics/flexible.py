@@ -25,8 +25,9 @@ spring ``k_h (y - W)``, which pushes the beam; the linear part of each impact is
 (undamped coupled modes, ``eigh``). The beam already holds the shell's mass, so ``m_h`` is counted
 twice, and near the barrel's ends, where the (2, 1) hoop mode's mass m_h / sin^2 grows large,
 that extra mass makes Eq. 3 (which uses the bat's MOI without it) meaningless, even above 1:
-kept for comparison only. ``"modal"`` (default): the hoop deflection ``s`` is one more mode of the bat (``m_h s'' + k_h s = F``,
-contact point at ``y - s``), the Lagrangian reduction of the ring's n = 2 mode, no mass added.
+kept for comparison only. ``"modal"`` (default): the hoop deflection ``s`` is one more mode of
+the bat (``m_h s'' + k_h s = F``, contact point at ``y - s``), the Lagrangian reduction of the
+ring's n = 2 mode, no mass added.
 One material, one structural loss factor: every (coupled) mode gets ``zeta = eta / 2``.
 
 Integration: all impacts of the batch advance together, arrays shaped (impacts, modes). The

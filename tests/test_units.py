@@ -71,3 +71,17 @@ def test_display_side_by_side():
     assert to_us(0.21948, "moi") == pytest.approx(12000, rel=2e-5)
     assert to_us(261.79938779914943, "angular_speed") == pytest.approx(2500)
     assert str(show(None, "mass")) == "—"
+
+
+def test_fast_units_agree_with_pint():
+    # units.FAST_UNITS skips pint for common units; each factor must equal pint's conversion
+    # (tolerance: floating-point rounding only).
+    import pint
+
+    from batcert.units import DIMENSIONS, FAST_UNITS
+    ureg = pint.UnitRegistry()
+    for dimension, units in FAST_UNITS.items():
+        si = DIMENSIONS[dimension][1]
+        for unit, factor in units.items():
+            expected = ureg.Quantity(1.0, ureg.parse_units(unit)).to(si).magnitude
+            assert factor == pytest.approx(expected, rel=1e-12), (dimension, unit)

@@ -39,8 +39,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import beta as beta_function
-from scipy.special import betainc
 
 from batcert.physics.ball import BallModel
 
@@ -135,6 +133,8 @@ def _quarter_time(p, s_from):
     """``integral_{s_from}^1 ds / sqrt(1 - s^p)`` [-], via the regularised incomplete beta
     function: with ``x = s^p`` it is ``B(1/p, 1/2) (1 - I_{s_from^p}(1/p, 1/2)) / p``."""
     a = 1.0 / p
+    from scipy.special import beta as beta_function, betainc  # lazy: ~0.5 s to import
+
     return beta_function(a, 0.5) * (1.0 - betainc(a, 0.5, np.asarray(s_from, float) ** p)) / p
 
 

@@ -75,24 +75,20 @@ def register(name: str):
     return deco
 
 
+def _load_engines() -> None:
+    """Engines register themselves on import."""
+    import batcert.physics.flexible  # noqa: F401
+    import batcert.physics.rigid  # noqa: F401
+
+
 def get_engine(name: str, **options) -> Engine:
     if name not in _REGISTRY:
-        # engines register on import
-        import batcert.physics.rigid  # noqa: F401
-        try:
-            import batcert.physics.flexible  # noqa: F401
-        except ImportError:
-            pass
+        _load_engines()
     if name not in _REGISTRY:
         raise KeyError(f"unknown engine {name!r}; available: {', '.join(sorted(_REGISTRY))}")
     return _REGISTRY[name](**options)
 
 
 def available_engines() -> list[str]:
-    get_engine.__wrapped__ if False else None
-    import batcert.physics.rigid  # noqa: F401
-    try:
-        import batcert.physics.flexible  # noqa: F401
-    except ImportError:
-        pass
+    _load_engines()
     return sorted(_REGISTRY)

@@ -30,7 +30,6 @@ class _Context:
     engine: Engine
     pivot: float
     support: str
-    moi: float
 
     def solve(self, conds: list[Condition], locations: np.ndarray) -> ImpactMetrics:
         """Solve every condition at its row of ``locations`` (shape (n_cond, n_loc)) in one batch."""
@@ -83,7 +82,7 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
                             f"beyond the pivot of this {bat.length * 100:.1f} cm bat")
     conds = conditions_from_spec(p["conditions"], bat.length, pivot)
     moi = bat.moi_about(pivot)
-    ctx = _Context(built, ball, engine, pivot, support, moi)
+    ctx = _Context(built, ball, engine, pivot, support)
     mp = mass_properties(built, pivot)
     metric = METRICS[p["metric"]]
     n = len(conds)
@@ -92,21 +91,18 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
     coarse = ctx.solve(conds, np.tile(grid, (n, 1)))
     # refine the exit-speed maximum (sweet spot) and, where needed, the metric maximum together
     targets = [coarse.exit_speed]
+    m_coarse = metric(coarse)
     if loc["rule"] == "max-metric":
-        targets.append(metric(coarse))
-    fine_rows, owners = [], []
-    for t in targets:
-        fine_rows.append(refine_grid(grid, np.argmax(t, axis=1), loc["resolution"]))
-        owners.append(t)
-    fine_r = np.concatenate(fine_rows)
+        targets.append(m_coarse)
+    fine_r = np.concatenate([refine_grid(grid, np.argmax(t, axis=1), loc["resolution"])
+                             for t in targets])
     fine = ctx.solve(conds * len(targets), fine_r)
     sweet, _ = parabolic_peak(fine_r[:n], fine.exit_speed[:n])
     edge_sweet = np.isin(np.argmax(coarse.exit_speed, axis=1), (0, grid.size - 1))
     flat = np.zeros(n, bool)
     if loc["rule"] == "max-metric":
         chosen, _ = parabolic_peak(fine_r[n:], metric(fine)[n:])
-        edge = np.isin(np.argmax(metric(coarse), axis=1), (0, grid.size - 1))
-        m_coarse = metric(coarse)
+        edge = np.isin(np.argmax(m_coarse, axis=1), (0, grid.size - 1))
         flat = np.ptp(m_coarse, axis=1) <= 1e-9 * np.abs(m_coarse).max(axis=1)
         # a metric that does not vary along the bat has no maximum: use the sweet spot
         chosen, edge = np.where(flat, sweet, chosen), np.where(flat, edge_sweet, edge)
@@ -148,7 +144,7 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
             cop=mp.cop, sweet_spot=float(sweet[i]),
             rigid_sweet_spot=None if not np.isfinite(rigid_ss) else float(rigid_ss),
             at_window_edge=bool(edge[i]),
-            sweep=Sweep(grid.tolist(), coarse.exit_speed[i].tolist(), metric(coarse)[i].tolist())))
+            sweep=Sweep(grid.tolist(), coarse.exit_speed[i].tolist(), m_coarse[i].tolist())))
 
     value = AGGREGATES[p["aggregate"]](values)
     limit = tol = None

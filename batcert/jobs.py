@@ -36,8 +36,11 @@ def load_bat_any(value: str) -> BuiltBat:
 
 
 def load_protocol_any(value: str) -> ProtocolInputs:
-    path = resolve("protocol", value)
-    protocol = load_protocol(path)
+    return protocol_inputs(load_protocol(resolve("protocol", value)))
+
+
+def protocol_inputs(protocol: ProtocolSpec) -> ProtocolInputs:
+    """A loaded protocol with its ball."""
     return ProtocolInputs(protocol, load_ball(protocol_ball_path(protocol)))
 
 

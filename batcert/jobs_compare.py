@@ -9,13 +9,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from batcert.compare import BatEntry, ComparisonResult, bat_labels, compare
-from batcert.jobs import ProtocolInputs, load_protocol_any
+from batcert.jobs import ProtocolInputs, load_protocol_any, protocol_inputs
 from batcert.league import LeagueResult, bat_facts, evaluate_league, needs_run
 from batcert.runner.runner import run_protocol
-from batcert.specs.ball import load_ball
 from batcert.specs.bat import BuiltBat, build_bat, load_bat
 from batcert.specs.league import LeagueSpec, load_league
-from batcert.specs.protocol import ProtocolSpec
 from batcert.specs.resolve import resolve
 from batcert.specs.study import StudySpec, load_study
 
@@ -53,11 +51,6 @@ def load_bats(values: list[str], relative_to: Path | None = None) -> list[Loaded
     return out
 
 
-def _inputs_for(spec: ProtocolSpec) -> ProtocolInputs:
-    ball = resolve("ball", spec.values["ball"], relative_to=Path(spec.path))
-    return ProtocolInputs(spec, load_ball(ball))
-
-
 def load_study_any(value: str) -> StudySpec:
     return load_study(resolve("study", value))
 
@@ -70,7 +63,7 @@ def run_comparison(bats: list[str], protocols: list[str], study: str | None = No
                    reference: str | None = None, engine: str = "flexible") -> ComparisonResult:
     """Run every bat under every protocol (a study's, then any extra ones) and compare them."""
     spec = load_study_any(study) if study else None
-    proto_inputs = [_inputs_for(p) for p in spec.protocols] if spec else []
+    proto_inputs = [protocol_inputs(p) for p in spec.protocols] if spec else []
     proto_inputs += [load_protocol_any(p) for p in protocols]
     if not proto_inputs:
         raise UsageProblem("give at least one --protocol, or a --study")

@@ -25,8 +25,6 @@ from batcert.reports.compare_markdown import (  # noqa: F401
 
 # ---------------------------------------------------------------- writing
 
-SUFFIX = {"md": ".md", "html": ".html", "json": ".json"}
-
 
 def _slug(text: str) -> str:
     from batcert.reports.write import slugify
@@ -52,28 +50,21 @@ def _stem(kind: str, what: str, bats: str) -> str:
     return stem
 
 
-def _write(texts: dict[Path, str]) -> list[Path]:
-    """Write every rendered text atomically (all are rendered before the first write)."""
-    from batcert.reports.write import atomic_write_text
-    for path, text in texts.items():
-        path.parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_text(path, text)
-    return list(texts)
+def _write(result, out_dir: Path, formats: Sequence[str], stem: str, markdown, html) -> list[Path]:
+    """Render every format first, then write them together (:func:`write.write_texts`)."""
+    from batcert.reports.write import FORMATS, write_texts
+    render = {"md": markdown, "html": html, "json": lambda r: r.to_json() + "\n"}
+    return write_texts({Path(out_dir) / f"{stem}{FORMATS[f][0]}": render[f](result)
+                        for f in dict.fromkeys(formats)})
 
 
 def write_comparison_reports(result: ComparisonResult, out_dir: Path,
                              formats: Sequence[str] = ("md", "html", "json")) -> list[Path]:
-    render = {"md": render_comparison_markdown, "html": render_comparison_html,
-              "json": lambda r: r.to_json() + "\n"}
-    stem = comparison_stem(result)
-    return _write({Path(out_dir) / f"{stem}{SUFFIX[f]}": render[f](result)
-                   for f in dict.fromkeys(formats)})
+    return _write(result, out_dir, formats, comparison_stem(result), render_comparison_markdown,
+                  render_comparison_html)
 
 
 def write_league_reports(result: LeagueResult, out_dir: Path,
                          formats: Sequence[str] = ("md", "html", "json")) -> list[Path]:
-    render = {"md": render_league_markdown, "html": render_league_html,
-              "json": lambda r: r.to_json() + "\n"}
-    stem = league_stem(result)
-    return _write({Path(out_dir) / f"{stem}{SUFFIX[f]}": render[f](result)
-                   for f in dict.fromkeys(formats)})
+    return _write(result, out_dir, formats, league_stem(result), render_league_markdown,
+                  render_league_html)

@@ -87,10 +87,16 @@ def write_reports(
         raise ValueError(f"report stem {stem!r} must be a plain file name")
 
     out_dir = Path(out_dir)
-    texts = {out_dir / f"{stem}{FORMATS[f][0]}": render(result, f) for f in wanted}
-    out_dir.mkdir(parents=True, exist_ok=True)
-    _write_all(texts)
-    return list(texts)
+    return write_texts({out_dir / f"{stem}{FORMATS[f][0]}": render(result, f) for f in wanted})
+
+
+def write_texts(texts: dict[Path, str]) -> list[Path]:
+    """Write already-rendered reports: every file is staged before the first one replaces its
+    target, and each replacement is atomic. Parent directories are created."""
+    for directory in {Path(p).parent for p in texts}:
+        directory.mkdir(parents=True, exist_ok=True)
+    _write_all({Path(p): t for p, t in texts.items()})
+    return [Path(p) for p in texts]
 
 
 def atomic_write_text(path: Path, text: str, encoding: str = "utf-8") -> Path:

@@ -14,17 +14,15 @@ from typing import Any
 
 from batcert.compare import ComparisonResult, ProtocolComparison, percent
 from batcert.league import INCH, LeagueResult, RuleResult
-from batcert.reports.compare_markdown import (  # noqa: F401
+from batcert.reports.compare_markdown import (
     DASH,
     METRIC_NAMES,
     RULE_NAMES,
     _pct_for_chart,
-    created_text,
-    limit_text,
-    location_text,
-    margin_text,
+    location_display,
+    metric_display,
     metric_text,
-    rule_value_text,
+    rule_value_display,
 )
 from batcert.reports.write import slugify
 from batcert.units import show
@@ -79,50 +77,12 @@ def _signed(text: str) -> str:
     return MINUS + text[1:] if text.startswith("-") else text
 
 
-def metric_display(value: float | None, metric: str) -> Any:
-    """The protocol metric: exit speed in m/s with mph below it, any other metric to 4 decimals."""
-    from batcert.units import Display
-    if value is None:
-        return DASH
-    if metric == "exit-speed":
-        return show(value, "speed", 2)
-    return Display(f"{value:.4f}", None)
-
-
-def location_display(r: float | None, pivot: float, length: float) -> Any:
-    """A position on the bat: metres from the pivot, with inches from the tip below it."""
-    from batcert.units import Display
-    if r is None:
-        return DASH
-    from_tip = length - pivot - r
-    where = "from tip" if from_tip >= 0 else "beyond tip"
-    return Display(f"{r:.3f} m", f"{abs(from_tip) / INCH:.2f} in {where}")
-
-
 def offset_display(d: float | None) -> Any:
     """A signed distance along the bat in cm, with inches below it."""
     from batcert.units import Display
     if d is None:
         return DASH
     return Display(_signed(f"{d * 100:+.1f} cm"), _signed(f"{d / INCH:+.2f} in"))
-
-
-def rule_value_display(value: Any, unit: str) -> Any:
-    """A league rule's value or limit as a display cell (lengths in mm with inches below)."""
-    from batcert.units import Display
-    if value is None:
-        return DASH
-    if isinstance(value, (list, tuple)):
-        return ", ".join(str(v) for v in value)
-    if isinstance(value, str):
-        return value
-    if unit == "m":
-        return Display(f"{value * 1000:.1f} mm", f"{value / INCH:.3f} in")
-    if unit == "m/s":
-        return show(value, "speed", 2)
-    if unit == "in - oz":
-        return Display(f"{value:.2f}", None)
-    return Display(f"{value:.4f}", None)
 
 
 def rule_limit_display(r: RuleResult) -> Any:

@@ -14,7 +14,7 @@ from typing import Any
 
 from batcert.compare import ComparisonResult, ProtocolComparison, percent
 from batcert.league import INCH, LeagueResult, RuleResult
-from batcert.units import show
+from batcert.units import Display, show
 
 DASH = "\u2014"
 METRIC_NAMES = {"exit-speed": "exit speed", "besr": "BESR", "bpf": "BPF", "bbcor": "BBCOR",
@@ -60,25 +60,26 @@ Block = Heading | Para | Bullets | Grid | Chart
 # ---------------------------------------------------------------- value formatting
 
 
-def metric_text(value: float | None, metric: str) -> str:
+def metric_display(value: float | None, metric: str) -> Any:
+    """The protocol metric: exit speed in m/s with mph, any other metric to 4 decimals."""
     if value is None:
         return DASH
     if metric == "exit-speed":
-        return str(show(value, "speed", 2))
-    return f"{value:.4f}"
+        return show(value, "speed", 2)
+    return Display(f"{value:.4f}", None)
 
 
-def location_text(r: float | None, pivot: float, length: float) -> str:
-    """A position from the pivot with the distance from the tip in inches."""
+def location_display(r: float | None, pivot: float, length: float) -> Any:
+    """A position on the bat: metres from the pivot, with inches from the tip."""
     if r is None:
         return DASH
-    from_tip = (length - pivot - r) / INCH
-    where = f"{from_tip:.2f} in from tip" if from_tip >= 0 else f"{-from_tip:.2f} in beyond tip"
-    return f"{r:.3f} m ({where})"
+    from_tip = length - pivot - r
+    where = "from tip" if from_tip >= 0 else "beyond tip"
+    return Display(f"{r:.3f} m", f"{abs(from_tip) / INCH:.2f} in {where}")
 
 
-def rule_value_text(value: Any, unit: str) -> str:
-    """A league rule's value or limit for display."""
+def rule_value_display(value: Any, unit: str) -> Any:
+    """A league rule's value or limit as a display cell (lengths in mm with inches)."""
     if value is None:
         return DASH
     if isinstance(value, (list, tuple)):
@@ -86,12 +87,25 @@ def rule_value_text(value: Any, unit: str) -> str:
     if isinstance(value, str):
         return value
     if unit == "m":
-        return f"{value * 1000:.1f} mm ({value / INCH:.3f} in)"
+        return Display(f"{value * 1000:.1f} mm", f"{value / INCH:.3f} in")
     if unit == "m/s":
-        return str(show(value, "speed", 2))
+        return show(value, "speed", 2)
     if unit == "in - oz":
-        return f"{value:.2f}"
-    return f"{value:.4f}"
+        return Display(f"{value:.2f}", None)
+    return Display(f"{value:.4f}", None)
+
+
+# Plain-text forms for Markdown and the terminal: the display cells above, "SI (US)".
+def metric_text(value: float | None, metric: str) -> str:
+    return str(metric_display(value, metric))
+
+
+def location_text(r: float | None, pivot: float, length: float) -> str:
+    return str(location_display(r, pivot, length))
+
+
+def rule_value_text(value: Any, unit: str) -> str:
+    return str(rule_value_display(value, unit))
 
 
 def limit_text(r: RuleResult) -> str:

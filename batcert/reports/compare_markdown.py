@@ -316,8 +316,10 @@ def blocks_to_markdown(blocks: Sequence[Block]) -> str:
     for b in blocks:
         if isinstance(b, Heading):
             lines += ["#" * b.level + " " + _md_escape(b.text), ""]
-        elif isinstance(b, Para):
-            lines += [_md_escape(b.text), ""]
+        elif isinstance(b, Para):  # blank lines in the text separate paragraphs
+            from batcert.reports import paragraphs
+            for text in paragraphs(str(b.text)):
+                lines += [_md_escape(text), ""]
         elif isinstance(b, Bullets):
             lines += [f"- {_md_escape(i)}" for i in b.items] + [""]
         elif isinstance(b, Grid):

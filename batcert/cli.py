@@ -182,8 +182,10 @@ def _show_bat(info: dict) -> None:
 def _show_ball(info: dict) -> None:
     from rich.markup import escape
 
+    from batcert.units import show
+
     console.kv_table(info["name"], [
-        ("mass", f"{info['mass']:.4f} kg ({info['mass'] / 0.028349523125:.2f} oz)"),
+        ("mass", str(show(info["mass"], "mass", 4))),
         ("radius", f"{info['radius'] * 1e3:.1f} mm"),
         ("contact law", f"{info['contact_model']}: k1 = {info['k1']:.4g} N/m^alpha, "
                         f"alpha = {info['alpha']:g}"),

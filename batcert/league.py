@@ -20,9 +20,8 @@ from typing import Any
 from batcert import __version__
 from batcert.results import RunResult
 from batcert.specs.league import RULE_KINDS
+from batcert.units import INCH, OUNCE
 
-INCH = 0.0254  # [m]
-OUNCE = 0.028349523125  # [kg]
 _REL = 1e-9  # comparisons allow this relative rounding (a 2.61 in barrel meets a 2.61 in limit)
 
 # Library materials by class; inline materials are classed from words in their name.

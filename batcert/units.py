@@ -30,13 +30,13 @@ _NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([
 # Exact SI factors of the units lab files use most, so that reading the shipped files does not
 # need pint's registry (about 0.4 s of start-up). Every entry is checked against pint in
 # tests/test_units.py; anything not listed here goes through pint.
-_IN, _OZ, _FT = 0.0254, 0.028349523125, 0.3048
+INCH, OUNCE, FOOT, MPH = 0.0254, 0.028349523125, 0.3048, 0.44704  # [m], [kg], [m], [m/s]
 FAST_UNITS: dict[str, dict[str, float]] = {
-    "length": {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": _IN, "ft": _FT},
-    "mass": {"kg": 1.0, "g": 0.001, "oz": _OZ, "lb": 0.45359237},
-    "moi": {"kg*m^2": 1.0, "kg*m**2": 1.0, "oz*in^2": _OZ * _IN**2, "oz*in**2": _OZ * _IN**2,
+    "length": {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": INCH, "ft": FOOT},
+    "mass": {"kg": 1.0, "g": 0.001, "oz": OUNCE, "lb": 0.45359237},
+    "moi": {"kg*m^2": 1.0, "kg*m**2": 1.0, "oz*in^2": OUNCE * INCH**2, "oz*in**2": OUNCE * INCH**2,
             "g*cm^2": 1e-7},
-    "speed": {"m/s": 1.0, "mph": 0.44704, "ft/s": _FT, "km/h": 1 / 3.6},
+    "speed": {"m/s": 1.0, "mph": MPH, "ft/s": FOOT, "km/h": 1 / 3.6},
     "angular_speed": {"rad/s": 1.0, "rpm": 2 * 3.141592653589793 / 60, "deg/s":
                       3.141592653589793 / 180},
     "density": {"kg/m^3": 1.0, "kg/m**3": 1.0, "g/cm^3": 1000.0},
@@ -127,10 +127,10 @@ def _factor(si_unit: str, unit: str) -> float:
 # Conversion factors for display, so reports need not import pint (computed from Units section
 # of REFERENCE-DATA.md: 1 in = 0.0254 m, 1 mph = 0.44704 m/s, 1 oz = 28.3495 g).
 _US: dict[str, tuple[str, float]] = {
-    "length": ("in", 1 / 0.0254),
-    "mass": ("oz", 1 / 0.028349523125),
-    "moi": ("oz*in^2", 1 / (0.028349523125 * 0.0254**2)),
-    "speed": ("mph", 1 / 0.44704),
+    "length": ("in", 1 / INCH),
+    "mass": ("oz", 1 / OUNCE),
+    "moi": ("oz*in^2", 1 / (OUNCE * INCH**2)),
+    "speed": ("mph", 1 / MPH),
     "angular_speed": ("rpm", 60 / (2 * 3.141592653589793)),
 }
 _SI_LABEL = {"length": "m", "mass": "kg", "moi": "kg m²", "speed": "m/s", "angular_speed": "rad/s"}

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from batcert.compare import ComparisonResult, ProtocolComparison, percent
-from batcert.league import INCH, LeagueResult, RuleResult
+from batcert.league import LeagueResult, RuleResult
 from batcert.reports.compare_markdown import (
     DASH,
     METRIC_NAMES,
@@ -25,7 +25,7 @@ from batcert.reports.compare_markdown import (
     rule_value_display,
 )
 from batcert.reports.write import slugify
-from batcert.units import show
+from batcert.units import INCH, show
 
 # ---------------------------------------------------------------- styled HTML views
 #

@@ -13,8 +13,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from batcert.compare import ComparisonResult, ProtocolComparison, percent
-from batcert.league import INCH, LeagueResult, RuleResult
-from batcert.units import Display, show
+from batcert.league import LeagueResult, RuleResult
+from batcert.units import INCH, Display, show
 
 DASH = "\u2014"
 METRIC_NAMES = {"exit-speed": "exit speed", "besr": "BESR", "bpf": "BPF", "bbcor": "BBCOR",

@@ -17,6 +17,7 @@ from batcert.specs.materials import LIBRARY
 from batcert.specs.schema import (Field, FieldError, Kind, Schema, choice, lookup, number, one_of,
                                   quantity, section, text, validate)
 from batcert.specs.yamlio import Located, load_yaml
+from batcert.units import to_us
 
 G = 9.80665  # standard gravity [m/s^2]
 
@@ -98,7 +99,7 @@ def _check_bat(v: dict, data: Located, errors: Collector, path: str) -> None:
     z, d = v["profile"]
     if z[-1] > v["length"] * (1 + 1e-9) or z[0] < 0:
         errors.add(lookup(data, "profile")[0], "profile", f"stations must lie between the knob "
-                   f"(0) and the tip ({v['length'] / 0.0254:.2f} in)")
+                   f"(0) and the tip ({to_us(v['length'], 'length'):.2f} in)")
 
 
 BAT_SCHEMA = Schema("bat", (

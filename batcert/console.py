@@ -13,14 +13,13 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
+from batcert.reports import METRIC_NAMES
 from batcert.results import RunResult
 from batcert.units import show, to_us
 
 out = Console(highlight=False, soft_wrap=True, width=None if sys.stdout.isatty() else 140)
 err = Console(stderr=True, highlight=False, soft_wrap=True)
 
-METRIC_LABEL = {"exit-speed": "exit speed", "besr": "BESR", "bpf": "BPF", "bbcor": "BBCOR",
-                "collision-efficiency": "collision efficiency e_A"}
 
 
 def print_json(data: Any) -> None:
@@ -57,7 +56,7 @@ def run_summary(result: RunResult, paths: list) -> None:
         + (f" + {result.tolerance:g}" if result.tolerance else "")
         + f", margin {_fmt(result.margin, result.metric)}")
     out.print(f"{verdict}  {result.bat} — {result.protocol} ({result.protocol_title})", markup=True)
-    out.print(f"  {METRIC_LABEL[result.metric]} ({result.aggregate} of {len(result.conditions)} "
+    out.print(f"  {METRIC_NAMES[result.metric]} ({result.aggregate} of {len(result.conditions)} "
               f"condition{'s' if len(result.conditions) > 1 else ''}) = "
               f"{_fmt(result.value, result.metric)}{limit}   [engine {result.engine}, "
               f"{result.support}]", markup=False)
@@ -110,7 +109,7 @@ def comparison_summary(result, paths: list) -> None:
     out.print(f"[bold]{escape(result.title)}[/]  (reference {escape(result.reference)}; engine "
               f"{result.engine})", markup=True)
     for p in result.protocols:
-        name = METRIC_LABEL.get(p.metric, p.metric)
+        name = METRIC_NAMES.get(p.metric, p.metric)
         cols = ["condition"] + [f"{name}: {lab}" for lab in labels] + [
             f"P: {lab}" for lab in result.compared]
         rows = [[c.name] + [metric_text(c.bats[lab].value, p.metric) for lab in labels]

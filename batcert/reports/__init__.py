@@ -24,12 +24,13 @@ if TYPE_CHECKING:
 
 __all__ = ["FORMATS", "Table", "atomic_write_text", "build_view", "render", "write_reports"]
 
+# Display names of metrics and impact rules: the one table for reports and the terminal.
 METRIC_NAMES = {
-    "exit-speed": "Exit speed",
+    "exit-speed": "exit speed",
     "besr": "BESR",
     "bpf": "BPF",
     "bbcor": "BBCOR",
-    "collision-efficiency": "Collision efficiency e_A",
+    "collision-efficiency": "collision efficiency e_A",
 }
 IMPACT_RULES = {
     "cop": "centre of percussion",
@@ -51,7 +52,9 @@ class Table:
 
 
 def metric_name(metric: str) -> str:
-    return METRIC_NAMES.get(metric, metric)
+    """The metric's display name, capitalised for headings ("Exit speed", "BESR")."""
+    name = METRIC_NAMES.get(metric, metric)
+    return name[:1].upper() + name[1:]
 
 
 def metric_value(value: float | None, metric: str, signed: bool = False) -> Display:

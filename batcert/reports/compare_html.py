@@ -16,14 +16,13 @@ from batcert.compare import ComparisonResult, ProtocolComparison, percent
 from batcert.league import LeagueResult, RuleResult
 from batcert.reports.compare_markdown import (
     DASH,
-    METRIC_NAMES,
-    RULE_NAMES,
     _pct_for_chart,
     location_display,
     metric_display,
     metric_text,
     rule_value_display,
 )
+from batcert.reports import IMPACT_RULES, METRIC_NAMES
 from batcert.reports.write import slugify
 from batcert.units import INCH, show
 
@@ -221,7 +220,7 @@ def _protocol_view(result: ComparisonResult, p: ProtocolComparison) -> dict[str,
         "metric": metric, "labels": labels, "compared": compared, "show_setup": show_setup,
         "facts": [("Metric", f"{metric}, {p.aggregate} over {len(p.conditions)} condition"
                              f"{'s' if len(p.conditions) != 1 else ''}"),
-                  ("Impact at", RULE_NAMES.get(p.impact_rule, p.impact_rule)),
+                  ("Impact at", IMPACT_RULES.get(p.impact_rule, p.impact_rule)),
                   ("Pivot", str(show(p.pivot, "length")) + " from the knob"),
                   ("Ball", p.ball),
                   ("Reference", f"{p.reference} (version {p.version})" if p.reference
@@ -240,7 +239,7 @@ def _overview(result: ComparisonResult) -> dict[str, Any]:
     rows = []
     for p in result.protocols:
         metric = METRIC_NAMES.get(p.metric, p.metric)
-        where = RULE_NAMES.get(p.impact_rule, p.impact_rule)
+        where = IMPACT_RULES.get(p.impact_rule, p.impact_rule)
         row: list[Any] = [p.protocol, f"{metric} at the {where}"]
         for lab in compared:
             s = p.relative_spread[lab]

@@ -14,13 +14,9 @@ from typing import Any
 
 from batcert.compare import ComparisonResult, ProtocolComparison, percent
 from batcert.league import LeagueResult, RuleResult
+from batcert.reports import DASH, IMPACT_RULES, METRIC_NAMES
 from batcert.units import INCH, Display, show
 
-DASH = "\u2014"
-METRIC_NAMES = {"exit-speed": "exit speed", "besr": "BESR", "bpf": "BPF", "bbcor": "BBCOR",
-                "collision-efficiency": "collision efficiency e_A"}
-RULE_NAMES = {"cop": "centre of percussion", "sweet-spot": "sweet spot (maximum exit speed)",
-              "max-metric": "maximum of the metric", "fixed-from-tip": "fixed distance from tip"}
 
 
 # ---------------------------------------------------------------- blocks
@@ -139,7 +135,7 @@ def _protocol_blocks(result: ComparisonResult, p: ProtocolComparison, charts: bo
     metric = METRIC_NAMES.get(p.metric, p.metric)
     out: list[Block] = [
         Heading(2, f"Protocol {p.protocol}: {p.title}"),
-        Para(f"Metric {metric}, impact at the {RULE_NAMES.get(p.impact_rule, p.impact_rule)}, "
+        Para(f"Metric {metric}, impact at the {IMPACT_RULES.get(p.impact_rule, p.impact_rule)}, "
              f"pivot {show(p.pivot, 'length')} from the knob, ball {p.ball}; conditions combine "
              f"by {p.aggregate}. Reference: {p.reference} (version {p.version})."),
     ]

@@ -266,6 +266,15 @@ def _engine_guard(func):
     return wrapper
 
 
+def _deliver(result, write, summary, out_dir, fmts, no_reports: bool, as_json: bool) -> None:
+    """Write the reports (unless --no-reports), then print JSON or the terminal summary."""
+    paths = [] if no_reports else write(result, out_dir, fmts)
+    if as_json:
+        console.print_json(result.to_dict())
+    else:
+        summary(result, paths)
+
+
 @main.command(epilog=COMPARE_EXIT_CODES)
 @click.argument("bats", nargs=-1)
 @click.option("--protocol", "-p", "protocols", multiple=True,
@@ -284,14 +293,9 @@ def compare(bats, protocols, study, reference, engine, out_dir, formats, no_repo
     from batcert import jobs_compare
     fmts = _formats(formats)
     result = jobs_compare.run_comparison(list(bats), list(protocols), study, reference, engine)
-    paths = []
-    if not no_reports:
-        from batcert.compare_reports import write_comparison_reports
-        paths = write_comparison_reports(result, out_dir, fmts)
-    if as_json:
-        console.print_json(result.to_dict())
-    else:
-        console.comparison_summary(result, paths)
+    from batcert.compare_reports import write_comparison_reports
+    _deliver(result, write_comparison_reports, console.comparison_summary, out_dir, fmts,
+             no_reports, as_json)
     failed = any(v == "fail" for p in result.protocols for v in p.verdicts.values())
     sys.exit(1 if failed else 0)
 
@@ -311,14 +315,9 @@ def league(league_id, bats, engine, allow_not_modelled, out_dir, formats, no_rep
     from batcert import jobs_compare
     fmts = _formats(formats)
     result = jobs_compare.run_league(league_id, list(bats), engine)
-    paths = []
-    if not no_reports:
-        from batcert.compare_reports import write_league_reports
-        paths = write_league_reports(result, out_dir, fmts)
-    if as_json:
-        console.print_json(result.to_dict())
-    else:
-        console.league_summary(result, paths)
+    from batcert.compare_reports import write_league_reports
+    _deliver(result, write_league_reports, console.league_summary, out_dir, fmts, no_reports,
+             as_json)
     sys.exit(0 if result.passed(allow_not_modelled) else 1)
 
 

@@ -13,6 +13,7 @@ from batcert.jobs import ProtocolInputs, load_protocol_any, protocol_inputs
 from batcert.league import LeagueResult, bat_facts, evaluate_league, needs_run
 from batcert.runner.runner import run_protocol
 from batcert.specs.bat import BuiltBat, build_bat, load_bat
+from batcert.specs.common import sha256_of
 from batcert.specs.league import LeagueSpec, load_league
 from batcert.specs.resolve import resolve
 from batcert.specs.study import StudySpec, load_study
@@ -56,7 +57,9 @@ def load_study_any(value: str) -> StudySpec:
 
 
 def _same(a: Path, b: Path) -> bool:
-    return a.resolve() == b.resolve()
+    """The same bat file: one path, or identical content (a shipped name resolves to the copy
+    installed with the package, which is the same bat as the checkout's file)."""
+    return a.resolve() == b.resolve() or sha256_of(a) == sha256_of(b)
 
 
 def run_comparison(bats: list[str], protocols: list[str], study: str | None = None,

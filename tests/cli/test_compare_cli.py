@@ -111,3 +111,15 @@ def test_invalid_input_exits_3_and_writes_nothing(batcert_cli, tmp_path):
     assert result.exit_code == 3
     assert "a unit is required" in result.stderr
     assert not out.exists()
+
+
+def test_reference_given_as_an_identical_copy_is_the_same_bat(batcert_cli, tmp_path):
+    # A shipped name resolves to the copy installed with the package, another path to the same
+    # bat: a reference with the same content as a compared bat must not be added a second time.
+    copy = tmp_path / "aluminium-copy.yaml"
+    copy.write_bytes(Path(ALU).read_bytes())
+    result = batcert_cli("compare", ASH, ALU, "-p", "ncaa-besr", "--reference", copy,
+                         "--engine", "rigid", "--json", "--no-reports")
+    data = json.loads(result.stdout)
+    assert data["reference"] == "Aluminium 34 in (Smith 2001)"
+    assert len(data["bats"]) == 2

@@ -1,4 +1,4 @@
-"""The batcert command line: a thin click layer over batcert.jobs, console and reports."""
+"""The batcert command line: a thin click layer over batcert.commands, console and reports."""
 
 from __future__ import annotations
 
@@ -32,11 +32,14 @@ class _Exit(Exception):
 
 
 def _guard(func):
-    """Map input problems to exit code 3 and lookup problems to 2, with one clear message."""
+    """Map input problems to exit code 3 and lookup and usage problems (an unknown shipped
+    name or engine, fewer than two bats) to 2, with one clear message."""
     import functools
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
+        from batcert.engines import EngineUnavailable
+        from batcert.errors import UsageProblem
         from batcert.runner.runner import ProtocolError
         from batcert.specs.resolve import NotFound
         try:
@@ -47,7 +50,7 @@ def _guard(func):
         except ProtocolError as exc:
             console.error(str(exc))
             sys.exit(3)
-        except NotFound as exc:
+        except (NotFound, EngineUnavailable, UsageProblem) as exc:
             raise click.UsageError(str(exc)) from None
 
     return wrapper
@@ -102,11 +105,12 @@ def main() -> None:
 def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
     """Run BAT (a bat YAML path or shipped bat name) under one or more protocols, print the
     verdict and write Markdown, HTML and JSON reports."""
-    from batcert import jobs
+    from batcert.commands.inputs import load_bat_any, load_protocol_any
+    from batcert.commands.run import run as run_bat
     fmts = _formats(formats)
-    built = jobs.load_bat_any(bat)
-    inputs = [jobs.load_protocol_any(p) for p in protocols]  # all inputs validated before running
-    results = jobs.run(built, inputs, engine)
+    loaded = load_bat_any(bat)
+    inputs = [load_protocol_any(p) for p in protocols]  # all inputs validated before running
+    results = run_bat(loaded, inputs, engine)
     written: list[list[Path]] = [[] for _ in results]
     if not no_reports:
         from batcert.reports.write import write_reports
@@ -128,17 +132,18 @@ def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
 @_guard
 def inspect(file, pivot, as_json):
     """Show a bat's mass properties, COP and bending modes (or a ball's COR and contact time)."""
-    from batcert import jobs
+    from batcert.commands import inspect as inspecting
+    from batcert.commands.inputs import detect_kind, load_bat_any
     from batcert.specs.resolve import resolve
     from batcert.units import UnitError, parse_quantity
     path = str(resolve("bat", file)) if not Path(file).is_file() else file
-    kind = jobs.detect_kind(path)
+    kind = detect_kind(path)
     if kind not in ("bat", "ball"):
         raise click.UsageError(f"{file} is a {kind} file; inspect takes a bat or a ball "
                                "(check it with `batcert validate`)")
     if kind == "ball":
         from batcert.specs.ball import load_ball
-        info = jobs.inspect_ball(load_ball(path))
+        info = inspecting.inspect_ball(load_ball(path))
         console.print_json(info) if as_json else _show_ball(info)
         return
     p = None
@@ -147,13 +152,12 @@ def inspect(file, pivot, as_json):
             p = parse_quantity(pivot, "length")
         except UnitError as exc:
             raise click.BadParameter(str(exc), param_hint="--pivot") from None
-    info = jobs.inspect_bat(jobs.load_bat_any(path), p)
+    info = inspecting.inspect_bat(load_bat_any(path).built, p)
     console.print_json(info) if as_json else _show_bat(info)
 
 
 def _show_bat(info: dict) -> None:
-    from rich.markup import escape
-
+    from batcert.reports.table import Table
     from batcert.units import show
     g = info["geometry"]
     console.kv_table(f"{info['name']}  ({info['construction']}, {info['material']})", [
@@ -172,16 +176,15 @@ def _show_bat(info: dict) -> None:
         for j, f in enumerate(info["modes_hz"][:6]):
             nodes = info["mode_nodes"][j] if j < len(info["mode_nodes"]) else []
             rows.append([str(j + 1), f"{f:.0f}", ", ".join(f"{z * 100:.1f}" for z in nodes)])
-        console.table("free-free bending modes",
-                      ["mode", escape("frequency [Hz]"), escape("nodes [cm from knob]")], rows)
+        console.table(Table(["mode", "frequency [Hz]", "nodes [cm from knob]"], rows,
+                            [False, True, True]), "free-free bending modes")
     if info.get("barrel"):
         console.kv_table("barrel (hoop) spring", [(k, f"{v:.4g}" if isinstance(v, float) else str(v))
                                                   for k, v in info["barrel"].items()])
 
 
 def _show_ball(info: dict) -> None:
-    from rich.markup import escape
-
+    from batcert.reports.table import Table
     from batcert.units import show
 
     console.kv_table(info["name"], [
@@ -195,37 +198,39 @@ def _show_ball(info: dict) -> None:
             for v, e, ct, cl, u, f in zip(info["speeds"], info["cor"], info["contact_time"],
                                           info["collision_time"], info["max_compression"],
                                           info["peak_force"])]
-    console.table("against a rigid wall", [escape(c) for c in (
-        "speed [m/s]", "COR", "contact time [ms]", "99 % impulse [ms]", "max compression [mm]",
-        "peak force [kN]")], rows)
+    console.table(Table(["speed [m/s]", "COR", "contact time [ms]", "99 % impulse [ms]",
+                         "max compression [mm]", "peak force [kN]"], rows, [True] * 6),
+                  "against a rigid wall")
 
 
 @main.command(epilog=CHECK_EXIT_CODES)
 @click.option("--json", "as_json", is_flag=True, help="Print only JSON on stdout.")
 def protocols(as_json):
     """List the shipped protocols."""
-    from batcert import jobs
-    items = jobs.list_protocols()
+    from batcert.commands.listing import list_protocols
+    from batcert.reports.format import DASH
+    from batcert.reports.table import Table
+    items = list_protocols()
     if as_json:
         console.print_json(items)
         return
-    console.table("shipped protocols", ["id", "title", "metric", "impact rule", "limit", "conditions"],
-                  [[p["id"], p["title"], p["metric"], p["rule"],
-                    "—" if p["limit"] is None else f"{p['limit']:g}", ", ".join(p["conditions"])]
-                   for p in items])
+    console.table(Table(["id", "title", "metric", "impact rule", "limit", "conditions"],
+                        [[p["id"], p["title"], p["metric"], p["rule"],
+                          DASH if p["limit"] is None else f"{p['limit']:g}",
+                          ", ".join(p["conditions"])] for p in items]), "shipped protocols")
 
 
 @main.command(epilog=CHECK_EXIT_CODES)
 @click.argument("files", nargs=-1, required=True)
 def validate(files):
     """Check spec files (bat, ball, protocol, league); report every problem of every file."""
-    from batcert import jobs
+    from batcert.commands.validate import validate_file
     from batcert.specs.resolve import NotFound
     failed = False
     for f in files:
         try:
-            kind = jobs.validate_file(f)
-            console.out.print(f"ok  {f} ({kind})", markup=False)
+            kind = validate_file(f)
+            console.note_out(f"ok  {f} ({kind})")
         except InputError as exc:
             console.input_error(exc.render())
             failed = True
@@ -251,24 +256,10 @@ Exit codes:
   3  invalid input (a spec file has errors; nothing is written)"""
 
 
-def _engine_guard(func):
-    """Map an unavailable engine or an impossible request to a usage error (exit 2)."""
-    import functools
-
-    @functools.wraps(func)
-    def wrapper(*args, **kwargs):
-        from batcert.jobs_compare import EngineUnavailable, UsageProblem
-        try:
-            return func(*args, **kwargs)
-        except (EngineUnavailable, UsageProblem) as exc:
-            raise click.UsageError(str(exc)) from None
-
-    return wrapper
-
-
-def _deliver(result, write, summary, out_dir, fmts, no_reports: bool, as_json: bool) -> None:
+def _deliver(result, summary, out_dir, fmts, no_reports: bool, as_json: bool) -> None:
     """Write the reports (unless --no-reports), then print JSON or the terminal summary."""
-    paths = [] if no_reports else write(result, out_dir, fmts)
+    from batcert.reports.write import write_reports
+    paths = [] if no_reports else write_reports(result, out_dir, fmts)
     if as_json:
         console.print_json(result.to_dict())
     else:
@@ -285,17 +276,14 @@ def _deliver(result, write, summary, out_dir, fmts, no_reports: bool, as_json: b
               "(Smith 2001 Eq. 6); default the first bat; added to the bats if not among them.")
 @_output_options("comparison")
 @_guard
-@_engine_guard
 def compare(bats, protocols, study, reference, engine, out_dir, formats, no_reports, as_json):
     """Run every BAT under every protocol and compare them side by side: the metric per protocol
     and condition, the relative performance P against the reference bat with its mean and spread,
     the COP against the sweet spot, and a study's claims tested against the model."""
-    from batcert import jobs_compare
+    from batcert.commands.compare import run_comparison
     fmts = _formats(formats)
-    result = jobs_compare.run_comparison(list(bats), list(protocols), study, reference, engine)
-    from batcert.compare_reports import write_comparison_reports
-    _deliver(result, write_comparison_reports, console.comparison_summary, out_dir, fmts,
-             no_reports, as_json)
+    result = run_comparison(list(bats), list(protocols), study, reference, engine)
+    _deliver(result, console.comparison_summary, out_dir, fmts, no_reports, as_json)
     failed = any(v == "fail" for p in result.protocols for v in p.verdicts.values())
     sys.exit(1 if failed else 0)
 
@@ -307,17 +295,14 @@ def compare(bats, protocols, study, reference, engine, out_dir, formats, no_repo
               "some rules are not modelled (they are still reported).")
 @_output_options("league verdicts", "Impact engine tier for performance rules.")
 @_guard
-@_engine_guard
 def league(league_id, bats, engine, allow_not_modelled, out_dir, formats, no_reports, as_json):
     """Check BATs against the rules of LEAGUE (shipped id such as ncaa, nfhs, usssa,
     usa-baseball, little-league, mlb, or a league YAML path): length, drop, barrel, construction,
     material and performance, each with measured value, limit and verdict."""
-    from batcert import jobs_compare
+    from batcert.commands.league import run_league
     fmts = _formats(formats)
-    result = jobs_compare.run_league(league_id, list(bats), engine)
-    from batcert.compare_reports import write_league_reports
-    _deliver(result, write_league_reports, console.league_summary, out_dir, fmts, no_reports,
-             as_json)
+    result = run_league(league_id, list(bats), engine)
+    _deliver(result, console.league_summary, out_dir, fmts, no_reports, as_json)
     sys.exit(0 if result.passed(allow_not_modelled) else 1)
 
 

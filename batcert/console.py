@@ -1,25 +1,29 @@
 """All terminal output goes through here: rich tables on stdout, messages on stderr.
 
-With ``--json`` only JSON is written to stdout so that scripts can parse it.
+With ``--json`` only JSON is written to stdout so that scripts can parse it. Tables are the
+reports' own :class:`~batcert.reports.table.Table` objects with the reports' formatting
+(:mod:`batcert.reports.format`); every piece of user text is shown as plain text, never read as
+console markup.
 """
 
 from __future__ import annotations
 
 import json
 import sys
+from collections.abc import Sequence
 from typing import Any
 
 from rich.console import Console
-from rich.markup import escape
-from rich.table import Table
+from rich.table import Table as RichTable
+from rich.text import Text
 
-from batcert.reports import METRIC_NAMES
-from batcert.results import RunResult
-from batcert.units import show, to_us
+from batcert.reports import format as fmt
+from batcert.reports.table import Badge, Table
 
 out = Console(highlight=False, soft_wrap=True, width=None if sys.stdout.isatty() else 140)
 err = Console(stderr=True, highlight=False, soft_wrap=True)
 
+STYLES = {"pass": "green", "fail": "red", "warn": "yellow", "na": "dim", "info": "bold"}
 
 
 def print_json(data: Any) -> None:
@@ -28,136 +32,124 @@ def print_json(data: Any) -> None:
 
 
 def error(message: str) -> None:
-    err.print(f"[bold red]error:[/] {message}", markup=True, highlight=False)
+    err.print(Text.assemble(("error: ", "bold red"), message))
 
 
 def input_error(text: str) -> None:
-    err.print("[bold red]invalid input[/]", markup=True)
-    err.print(text, markup=False)
+    err.print(Text("invalid input", style="bold red"))
+    err.print(Text(text))
 
 
 def note(message: str) -> None:
-    err.print(message, markup=False)
+    err.print(Text(message))
 
 
-def _fmt(value: float | None, metric: str) -> str:
-    if value is None:
-        return "—"
-    if metric == "exit-speed":
-        return str(show(value, "speed", 2))
-    return f"{value:.4f}"
+def _cell(value: Any) -> Text:
+    if isinstance(value, Badge):
+        return Text(value.text, style=STYLES.get(value.css, ""))
+    return Text(str(value))
 
 
-def run_summary(result: RunResult, paths: list) -> None:
-    verdict = {"pass": "[bold green]PASS[/]", "fail": "[bold red]FAIL[/]"}.get(
-        result.verdict or "", "[bold]no limit[/]")
-    limit = "" if result.limit is None else (
-        f" against limit {_fmt(result.limit, result.metric)}"
-        + (f" + {result.tolerance:g}" if result.tolerance else "")
-        + f", margin {_fmt(result.margin, result.metric)}")
-    out.print(f"{verdict}  {result.bat} — {result.protocol} ({result.protocol_title})", markup=True)
-    out.print(f"  {METRIC_NAMES[result.metric]} ({result.aggregate} of {len(result.conditions)} "
-              f"condition{'s' if len(result.conditions) > 1 else ''}) = "
-              f"{_fmt(result.value, result.metric)}{limit}   [engine {result.engine}, "
-              f"{result.support}]", markup=False)
-    t = Table(show_header=True, header_style="bold", box=None, pad_edge=False)
-    cols = ["condition", "pitch\n[m/s]", "bat w1\n[rad/s]", "impact\n[m from pivot]",
-            "COP\n[m]", "sweet spot\n[m]", "exit speed\n[m/s (mph)]", "COR", "BPF", "BESR",
-            "BBCOR", "e_A"]
-    for col in cols:
-        t.add_column(escape(col), justify="left" if col == "condition" else "right")
-    for c in result.conditions:
-        t.add_row(c.name, f"{-c.pitch_speed:.1f}", f"{c.bat_angular_speed:.1f}",
-                  f"{c.impact_location:.3f}" + ("*" if c.at_window_edge else ""), f"{c.cop:.3f}",
-                  f"{c.sweet_spot:.3f}", f"{c.exit_speed:.2f} ({to_us(c.exit_speed, 'speed'):.1f})",
-                  f"{c.cor:.3f}", f"{c.bpf:.3f}", f"{c.besr:.3f}", f"{c.bbcor:.3f}",
-                  f"{c.collision_efficiency:.3f}")
-    out.print(t)
-    for w in result.warnings:
-        out.print(f"  [yellow]warning:[/] {w}", markup=True)
-    for p in paths:
-        out.print(f"  wrote {p}", markup=False)
+def table(t: Table, title: str = "") -> None:
+    """A report table on the terminal (summary rows after a blank line)."""
+    r = RichTable(title=Text(title or t.title) if (title or t.title) else None, box=None,
+                  title_justify="left", header_style="bold", pad_edge=False)
+    for i, h in enumerate(t.headers):
+        r.add_column(Text(h), justify="right" if t.is_numeric(i) else "left")
+    for row in t.rows:
+        r.add_row(*(_cell(c) for c in row))
+    for row in t.foot:
+        r.add_row(*(_cell(c) for c in row), style="bold")
+    out.print(r)
 
 
-def kv_table(title: str, rows: list[tuple[str, str]]) -> None:
-    t = Table(title=title, show_header=False, box=None, title_justify="left", pad_edge=False)
+def kv_table(title: str, rows: Sequence[tuple[str, Any]]) -> None:
+    t = RichTable(title=Text(title), show_header=False, box=None, title_justify="left",
+                  pad_edge=False)
     t.add_column("", style="bold")
     t.add_column("")
     for k, v in rows:
-        t.add_row(k, v)
+        t.add_row(Text(k), _cell(v))
     out.print(t)
 
 
-def table(title: str, columns: list[str], rows: list[list[str]]) -> None:
-    t = Table(title=title, box=None, title_justify="left", header_style="bold", pad_edge=False)
-    for i, c in enumerate(columns):
-        t.add_column(c, justify="left" if i == 0 else "right")
-    for r in rows:
-        t.add_row(*r)
-    out.print(t)
+def _verdict_text(verdict: str | None) -> Text:
+    return {"pass": Text("PASS", style="bold green"), "fail": Text("FAIL", style="bold red")
+            }.get(verdict or "", Text("no limit", style="bold"))
 
 
-def comparison_summary(result, paths: list) -> None:
-    """Terminal view of a :class:`~batcert.compare.ComparisonResult`: per protocol the metric
-    and P of each bat per condition, then the study's claims and the findings."""
-    from rich.markup import escape
-    from rich.text import Text
+def _wrote(paths: Sequence[Any]) -> None:
+    for p in paths:
+        out.print(Text(f"  wrote {p}"))
 
-    from batcert.compare import percent
-    from batcert.compare_reports import metric_text
-    labels = [b.label for b in result.bats]
-    out.print(f"[bold]{escape(result.title)}[/]  (reference {escape(result.reference)}; engine "
-              f"{result.engine})", markup=True)
-    for p in result.protocols:
-        name = METRIC_NAMES.get(p.metric, p.metric)
-        cols = ["condition"] + [f"{name}: {lab}" for lab in labels] + [
-            f"P: {lab}" for lab in result.compared]
-        rows = [[c.name] + [metric_text(c.bats[lab].value, p.metric) for lab in labels]
-                + [percent(c.bats[lab].relative) for lab in result.compared]
-                for c in p.conditions]
-        spreads = [p.relative_spread[lab] for lab in result.compared]
-        rows.append(["mean P (std)"] + [""] * len(labels) + [
-            f"{percent(s.mean)} ({'—' if s.std is None else f'{s.std * 100:.2f} %'})"
-            for s in spreads])
-        table(escape(f"{p.protocol} — {p.title}"), [escape(c) for c in cols],
-              [[escape(c) for c in r] for r in rows])
-    if result.claims:
-        style = {"supported": "green", "not-supported": "red", "not-testable": "yellow"}
-        t = Table(title="study claims against the model", box=None, title_justify="left",
-                  header_style="bold", pad_edge=False)
-        for col in ("claim", "model", "evidence"):
-            t.add_column(col)
-        for c in result.claims:
-            t.add_row(Text(c.id), Text(c.status, style=style.get(c.status, "bold")),
-                      Text(c.evidence))
-        out.print(t)
-    for f in result.findings:
-        out.print(f"  - {f}", markup=False)
-    for w in result.warnings:
+
+def _warnings(warnings: Sequence[str]) -> None:
+    for w in warnings:
         out.print(Text.assemble(("  warning: ", "yellow"), w))
-    for p in paths:
-        out.print(f"  wrote {p}", markup=False)
 
 
-def league_summary(result, paths: list) -> None:
-    """Terminal view of a :class:`~batcert.league.LeagueResult`: a table per bat and rule."""
-    from rich.text import Text
+def run_summary(result, paths: Sequence[Any]) -> None:
+    """Terminal view of a :class:`~batcert.results.run.RunResult`."""
+    m = result.metric
+    limit = "" if result.limit is None else (
+        f" against limit {fmt.metric_value(result.limit, m)}"
+        + (f" + {result.tolerance:g}" if result.tolerance else "")
+        + f", margin {fmt.metric_value(result.margin, m, signed_=True)}")
+    out.print(Text.assemble(_verdict_text(result.verdict),
+                            f"  {result.bat} \u2014 {result.protocol} ({result.protocol_title})"))
+    n = len(result.conditions)
+    out.print(Text(f"  {fmt.metric_word(m)} ({fmt.aggregate_word(result.aggregate)} of {n} "
+                   f"condition{'s' if n > 1 else ''}) = {fmt.metric_value(result.value, m)}"
+                   f"{limit}   [engine {result.engine}, {result.support}]"))
+    t = Table(["condition", "pitch\n[m/s]", "bat w1\n[rad/s]", "impact\n[m from pivot]",
+               "COP\n[m]", "sweet spot\n[m]", "exit speed\n[m/s (mph)]", "COR", "BPF", "BESR",
+               "BBCOR", "e_A"], numeric=[False] + [True] * 11)
+    for c in result.conditions:
+        t.rows.append([c.name, f"{-c.pitch_speed + 0.0:.1f}", f"{c.bat_angular_speed:.1f}",
+                       f"{c.impact_location:.3f}" + ("*" if c.at_window_edge else ""),
+                       f"{c.cop:.3f}", f"{c.sweet_spot:.3f}",
+                       fmt.quantity(c.exit_speed, "speed", 2), fmt.plain(c.cor, 4),
+                       fmt.metric_value(c.bpf, "bpf"), fmt.metric_value(c.besr, "besr"),
+                       fmt.metric_value(c.bbcor, "bbcor"),
+                       fmt.metric_value(c.collision_efficiency, "collision-efficiency")])
+    table(t)
+    _warnings(result.warnings)
+    _wrote(paths)
 
-    from batcert.compare_reports import VERDICT_TEXT, limit_text, margin_text, rule_value_text
-    style = {"pass": "green", "fail": "red", "not-modelled": "yellow", "not-applicable": "dim",
-             "incomplete": "yellow"}
-    for b in result.bats:
-        out.print(Text.assemble((b.verdict.upper(), f"bold {style[b.verdict]}"),
-                                f"  {b.bat} — {result.league} ({result.title})"))
-        t = Table(box=None, header_style="bold", pad_edge=False)
-        for col in ("rule", "value", "limit", "verdict", "margin", "note"):
-            t.add_column(col, justify="right" if col in ("value", "limit", "margin") else "left")
-        for r in b.rules:
-            t.add_row(Text(r.rule), Text(rule_value_text(r.value, r.unit)), Text(limit_text(r)),
-                      Text(VERDICT_TEXT[r.verdict], style=style[r.verdict]),
-                      Text(margin_text(r)), Text(r.note))
-        out.print(t)
-        for w in b.warnings:
-            out.print(Text.assemble(("  warning: ", "yellow"), w))
-    for p in paths:
-        out.print(f"  wrote {p}", markup=False)
+
+def comparison_summary(result, paths: Sequence[Any]) -> None:
+    """Terminal view of a comparison: per protocol the report's table of the metric and P per
+    condition, then the study's claims and the findings."""
+    from batcert.reports.compare_view import comparison_view
+    view = comparison_view(result, charts=False)
+    out.print(Text.assemble((view["title"], "bold"),
+                            f"  (reference {result.reference}; engine {result.engine})"))
+    for p in view["protocols"]:
+        table(p["grid"], f"{p['id']} \u2014 {p['title']}")
+    if view["claims"]:
+        table(Table(["claim", "model", "evidence"],
+                    [[c["id"], c["badge"], c["evidence"]] for c in view["claims"]]),
+              "study claims against the model")
+    for f in result.findings:
+        out.print(Text(f"  - {f}"))
+    _warnings(result.warnings)
+    _wrote(paths)
+
+
+def league_summary(result, paths: Sequence[Any]) -> None:
+    """Terminal view of a league evaluation: a table per bat and rule."""
+    from batcert.reports.league_view import league_view
+    view = league_view(result)
+    for b in view["bats"]:
+        out.print(Text.assemble(_cell(b["badge"]), f"  {b['bat']} \u2014 {result.league} "
+                                f"({result.title})"))
+        table(Table(["rule", "value", "limit", "verdict", "margin", "note"],
+                    [[r["id"], r["value"], r["limit"], r["badge"], r["margin"], r["note"]]
+                     for r in b["rules"]], [False, True, True, False, True, False]))
+        _warnings(b["warnings"])
+    _wrote(paths)
+
+
+def note_out(message: str) -> None:
+    """A plain line on stdout (e.g. ``ok  file.yaml (bat)``)."""
+    out.print(Text(message))

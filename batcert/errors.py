@@ -70,3 +70,16 @@ class Collector:
     def raise_if_any(self) -> None:
         if self.problems:
             raise InputError(list(self.problems))
+
+
+class ModelError(ValueError):
+    """A bat that cannot be modelled (an infeasible reconciliation, a wall that fills the
+    section, an absurd calibration); ``field`` names the offending spec field, dotted."""
+
+    def __init__(self, field_: str, message: str):
+        super().__init__(message)
+        self.field = field_
+
+
+class UsageProblem(ValueError):
+    """The command line asks for something impossible (e.g. fewer than two bats to compare)."""

@@ -18,11 +18,11 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
-sys.path.insert(0, str(ROOT / "tests" / "physics"))
+sys.path.insert(0, str(ROOT / "tests" / "engines"))
 
-from batcert.physics import beam  # noqa: E402
-from batcert.physics.engine import ImpactBatch  # noqa: E402
-from batcert.physics.flexible import FlexibleEngine  # noqa: E402
+from batcert.physics.modes import cached_modes, clear_mode_cache  # noqa: E402
+from batcert.engines import ImpactBatch  # noqa: E402
+from batcert.engines.flexible import FlexibleEngine  # noqa: E402
 from r161 import r161_bat  # noqa: E402
 from test_flexible import BALL, hollow_bat, reference_impact  # noqa: E402
 
@@ -89,7 +89,7 @@ def main(quick: bool = False) -> None:
     lo5, med5 = timed(lambda: fine.solve(bat, BALL, PIVOT, one))
     print(f"R161, 71-location sweep at a 5 us step:       {lo5:6.1f} ms (median {med5:.1f})")
 
-    beam.clear_mode_cache()
+    clear_mode_cache()
     t0 = time.perf_counter()
     engine.solve(bat, BALL, PIVOT, one)
     cold = (time.perf_counter() - t0) * 1e3
@@ -97,7 +97,7 @@ def main(quick: bool = False) -> None:
 
     # speed ratio against the reference integration (one impact at a time, solve_ivp DOP853)
     sweep = z if not quick else z[::7]
-    modes = beam.cached_modes(bat, "pinned", PIVOT, engine.n_modes)
+    modes = cached_modes(bat, "pinned", PIVOT, engine.n_modes)
     batch = ImpactBatch(sweep - PIVOT, -60.0, 0.0)
     t_batch, _ = timed(lambda: engine.solve(bat, BALL, PIVOT, batch), repeat=5)
     fast = engine.solve(bat, BALL, PIVOT, batch).exit_speed

@@ -19,7 +19,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
 
-from batcert.physics import beam  # noqa: E402
+from batcert.physics.modes import cached_modes, clear_mode_cache  # noqa: E402
+from batcert.physics.residual import residual_compliance  # noqa: E402
 from batcert.physics.batmodel import Material  # noqa: E402
 from r161 import r161_bat, solid_bat  # noqa: E402
 
@@ -62,23 +63,23 @@ def main() -> None:
     for name, bat in bats.items():
         for support in ("free", "pinned"):
             for refine in (1, 2, 4):
-                beam.clear_mode_cache()
-                first = ms(lambda: beam.cached_modes(bat, support, PIVOT, N_MODES, refine))
+                clear_mode_cache()
+                first = ms(lambda: cached_modes(bat, support, PIVOT, N_MODES, refine))
                 cold = []
                 for _ in range(REPEAT):
-                    beam.clear_mode_cache()
-                    cold.append(ms(lambda: beam.cached_modes(bat, support, PIVOT, N_MODES,
+                    clear_mode_cache()
+                    cold.append(ms(lambda: cached_modes(bat, support, PIVOT, N_MODES,
                                                              refine)))
-                hit = [ms(lambda: beam.cached_modes(bat, support, PIVOT, N_MODES, refine))
+                hit = [ms(lambda: cached_modes(bat, support, PIVOT, N_MODES, refine))
                        for _ in range(REPEAT)]
-                modes = beam.cached_modes(bat, support, PIVOT, N_MODES, refine)
+                modes = cached_modes(bat, support, PIVOT, N_MODES, refine)
                 print(f"{name:20s} {support:8s} {refine:6d} {2 * modes.z.size:5d} "
                       f"{first:8.2f} {np.median(cold):8.2f} {np.median(hit):8.3f}  "
                       f"{modes.frequencies_hz[0]:.1f}")
     bat = bats["R161 (84 slices)"]
-    modes = beam.cached_modes(bat, "free", PIVOT, 18)
+    modes = cached_modes(bat, "free", PIVOT, 18)
     z = np.linspace(0.5, 0.83, 34)
-    t = np.median([ms(lambda: beam.residual_compliance(bat, modes, z)) for _ in range(REPEAT)])
+    t = np.median([ms(lambda: residual_compliance(bat, modes, z)) for _ in range(REPEAT)])
     print(f"residual_compliance, R161 free, 18 modes, {z.size} impact points: {t:.2f} ms")
 
 

@@ -18,11 +18,13 @@ sys.path.insert(0, str(ROOT))
 
 from batcert.specs.ball import BALL_SCHEMA  # noqa: E402
 from batcert.specs.bat import BAT_SCHEMA  # noqa: E402
-from batcert.specs.league import LEAGUE_SCHEMA, RULE_KINDS  # noqa: E402
+from batcert.analysis.claims import CLAIM_CHECKS  # noqa: E402
+from batcert.analysis.league import RULE_KINDS  # noqa: E402
+from batcert.specs.league import LEAGUE_SCHEMA  # noqa: E402
 from batcert.specs.materials import LIBRARY  # noqa: E402
 from batcert.specs.protocol import PROTOCOL_SCHEMA  # noqa: E402
 from batcert.specs.schema import Schema, describe_schema  # noqa: E402
-from batcert.specs.study import CLAIM_CHECKS, STUDY_SCHEMA  # noqa: E402
+from batcert.specs.study import STUDY_SCHEMA  # noqa: E402
 
 TARGET = ROOT / "docs" / "inputs.md"
 
@@ -318,7 +320,7 @@ def _kinds_table() -> str:
 
 def _checks_table() -> str:
     rows = ["| check | supported when |", "|---|---|"]
-    rows += [f"| `{k}` | {v} |" for k, v in CLAIM_CHECKS.items()]
+    rows += [f"| `{k}` | {v.doc} |" for k, v in CLAIM_CHECKS.items()]
     return "\n".join(rows)
 
 

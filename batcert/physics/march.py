@@ -77,33 +77,67 @@ class Separation:
     barrel_share: np.ndarray | None  # barrel's share of the peak stored energy [-], (n,)
 
 
-def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, time_step: float,
-          max_time: float) -> Separation:
-    """Integrate all impacts from first touch to separation (ETDRK4; module notes).
+@dataclass
+class _Coefficients:
+    """Per-impact constants of one ETDRK4 step (Cox & Matthews 2002, Eqs. 26-29), row i for
+    impact i. ``R`` reads the free contact-point motion (and the barrel) from ``Z``, ``B`` adds
+    the forcing of a step to ``Z``."""
 
-    State per impact: complex modal coordinates ``Z`` (n, K), the merged rigid/ball coordinate
-    ``w`` and its rate ``v``, the impulse on the ball, the largest compression so far. The
-    stage compressions of Cox & Matthews' scheme (their Eqs. 26-29, linear part exact) are
-    ``u_a = U2 + ka F0``, ``u_b = U2 + ka Fa + b0 F0``, ``u_c = U1 + c0 F0 + cb Fb + ca Fa`` and
-    at the step end ``U1 + n0 F0 + n1 (Fa + Fb) + n2 Fc``, where ``U2``, ``U1`` are the free
-    (force-less) motions over h/2 and h, read from ``Z`` with one matrix product.
+    ka: np.ndarray
+    b0: np.ndarray
+    c0: np.ndarray
+    cb: np.ndarray
+    ca: np.ndarray
+    n0: np.ndarray
+    n1: np.ndarray
+    n2: np.ndarray
+    w6: np.ndarray
+    v6: np.ndarray
+    e1: np.ndarray  # (n, K) complex
+    B: np.ndarray  # (n, 3, 2K)
+    R: np.ndarray  # (n, rows, 2K)
+    beta: np.ndarray
+    ab: np.ndarray  # alpha - beta
+    kh: np.ndarray  # barrel stiffness [N/m], 0 without a barrel
 
-    Parameters
-    ----------
-    system : LinearSystem
-        Linear part of each impact.
-    k1, alpha : float
-        Contact law, compression branch [N/m^alpha], [-].
-    beta : array_like
-        Restitution exponent per impact [-], (n,).
-    approach_speed : array_like
-        Initial compression rate ``w1 r - v_p`` [m/s], (n,), > 0.
-    time_step : float
-        Step [s].
-    max_time : float
-        Safety cap on the contact time [s].
-    """
-    h, om, g, zeta = float(time_step), system.omega, system.gain, system.zeta
+    def take(self, keep: np.ndarray) -> _Coefficients:
+        return _Coefficients(**{k: v[keep] for k, v in vars(self).items()})
+
+
+@dataclass
+class _State:
+    """Everything that evolves per impact, row i for impact i; :meth:`take` keeps rows
+    together, so no array can be left out when finished impacts are dropped."""
+
+    z: np.ndarray  # complex modal coordinates (n, K)
+    w: np.ndarray  # merged rigid/ball coordinate [m]
+    v: np.ndarray  # its rate [m/s]
+    impulse: np.ndarray  # on the ball so far [N s]
+    u: np.ndarray  # compression at the step start [m]
+    u_top: np.ndarray  # largest compression so far [m]
+    f_peak: np.ndarray  # largest force so far [N]
+    u_prev: np.ndarray  # compression one step earlier [m]
+    du_prev: np.ndarray  # compression rate one step earlier [m/s]
+    e_peak: np.ndarray  # largest stored energy so far [J]
+    share: np.ndarray  # barrel's share of the stored energy at that peak [-]
+    rows: np.ndarray  # index of each row in the caller's batch
+
+    def take(self, keep: np.ndarray) -> _State:
+        return _State(**{k: v[keep] for k, v in vars(self).items()})
+
+    @classmethod
+    def start(cls, n: int, k_modes: int, approach_speed) -> _State:
+        zeros = np.zeros(n)
+        return cls(z=np.zeros((n, k_modes), dtype=complex), w=zeros.copy(),
+                   v=np.array(approach_speed, dtype=float).reshape(n), impulse=zeros.copy(),
+                   u=zeros.copy(), u_top=np.full(n, _TINY), f_peak=zeros.copy(),
+                   u_prev=zeros.copy(), du_prev=zeros.copy(), e_peak=zeros.copy(),
+                   share=zeros.copy(), rows=np.arange(n))
+
+
+def _coefficients(system: LinearSystem, h: float, alpha: float, beta) -> _Coefficients:
+    """The step constants of every impact (see :func:`march`)."""
+    om, g, zeta = system.omega, system.gain, system.zeta
     n, k_modes = om.shape
     om_d = om * np.sqrt(1.0 - zeta**2)
     lam = -zeta * om + 1j * om_d
@@ -122,97 +156,125 @@ def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, t
 
     # read-outs: free y after h/2 and h, y' now (= Im(sum (i g - zeta om c_y) Z)), barrel now
     rows = [im_weights(c_y * e2), im_weights(c_y * e1), im_weights(1j * g - zeta * om * c_y)]
-    hollow = system.barrel_readout is not None
-    if hollow:
+    if system.barrel_readout is not None:
         rows.append(im_weights(system.barrel_readout / om_d + 0j))
     inv_mu = system.inv_reduced_mass
     ka = -(c_y * g * q_half.imag).sum(1)
     kn = [(c_y * forcing[:, i, :].imag).sum(1) - (h * h / 6 * inv_mu if i < 2 else 0.0)
           for i in range(3)]
     beta = np.broadcast_to(np.asarray(beta, dtype=float), (n,)).copy()
-    c = {"ka": ka, "b0": -h * h / 4 * inv_mu, "c0": -(c_y * g * (e2 * q_half).imag).sum(1) - ka,
-         "cb": 2 * ka, "ca": -h * h / 2 * inv_mu, "n0": kn[0], "n1": kn[1], "n2": kn[2],
-         "w6": -h * h / 6 * inv_mu, "v6": -h / 6 * inv_mu, "e1": e1,
-         "B": np.ascontiguousarray(forcing).view(float),
-         "R": np.ascontiguousarray(np.stack(rows, axis=1)), "beta": beta, "ab": alpha - beta,
-         "kh": system.barrel_stiffness if hollow else np.zeros(n)}
+    kh = system.barrel_stiffness if system.barrel_stiffness is not None else np.zeros(n)
+    return _Coefficients(
+        ka=ka, b0=-h * h / 4 * inv_mu, c0=-(c_y * g * (e2 * q_half).imag).sum(1) - ka,
+        cb=2 * ka, ca=-h * h / 2 * inv_mu, n0=kn[0], n1=kn[1], n2=kn[2], w6=-h * h / 6 * inv_mu,
+        v6=-h / 6 * inv_mu, e1=e1, B=np.ascontiguousarray(forcing).view(float),
+        R=np.ascontiguousarray(np.stack(rows, axis=1)), beta=beta, ab=alpha - beta, kh=kh)
+
+
+def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, time_step: float,
+          max_time: float) -> Separation:
+    """Integrate all impacts from first touch to separation (ETDRK4; module notes).
+
+    State per impact (:class:`_State`): complex modal coordinates ``Z`` (n, K), the merged
+    rigid/ball coordinate ``w`` and its rate ``v``, the impulse on the ball, the largest
+    compression so far. The stage compressions of Cox & Matthews' scheme (their Eqs. 26-29,
+    linear part exact) are ``u_a = U2 + ka F0``, ``u_b = U2 + ka Fa + b0 F0``,
+    ``u_c = U1 + c0 F0 + cb Fb + ca Fa`` and at the step end ``U1 + n0 F0 + n1 (Fa + Fb) +
+    n2 Fc``, where ``U2``, ``U1`` are the free (force-less) motions over h/2 and h, read from
+    ``Z`` with one matrix product. Finished impacts are recorded and, once they are many,
+    dropped from the arrays (:meth:`_State.take`).
+
+    Parameters
+    ----------
+    system : LinearSystem
+        Linear part of each impact.
+    k1, alpha : float
+        Contact law, compression branch [N/m^alpha], [-].
+    beta : array_like
+        Restitution exponent per impact [-], (n,).
+    approach_speed : array_like
+        Initial compression rate ``w1 r - v_p`` [m/s], (n,), > 0.
+    time_step : float
+        Step [s].
+    max_time : float
+        Safety cap on the contact time [s].
+    """
+    h = float(time_step)
+    n, k_modes = system.omega.shape
+    c = _coefficients(system, h, alpha, beta)
+    hollow = system.barrel_readout is not None
     lk1 = np.log(k1)
 
     def force(x, l_top):  # contact_force() in log form, both branches in one exp
         lx = np.log(np.maximum(x, _TINY))
-        return np.exp(lk1 + c["ab"] * np.maximum(lx, l_top) + c["beta"] * lx)
+        return np.exp(lk1 + c.ab * np.maximum(lx, l_top) + c.beta * lx)
 
-    z = np.zeros((n, k_modes), dtype=complex)
-    w, v, imp, u, du_prev = np.zeros(n), np.array(approach_speed, dtype=float), np.zeros(n), \
-        np.zeros(n), np.zeros(n)
-    u_prev, u_top, f_peak, e_peak, share = u, np.full(n, _TINY), np.zeros(n), np.zeros(n), \
-        np.zeros(n)
-    rows_left, live, f_vec = np.arange(n), np.ones(n, dtype=bool), np.empty((n, 1, 3))
+    st = _State.start(n, k_modes, approach_speed)
+    live = np.ones(n, dtype=bool)
+    f_vec = np.empty((n, 1, 3))
     out = Separation(impulse=np.zeros(n), time=np.full(n, np.nan), separated=np.zeros(n, bool),
                      peak_force=np.zeros(n), max_compression=np.zeros(n),
                      modal=np.zeros((n, k_modes), dtype=complex),
                      barrel_share=np.zeros(n) if hollow else None)
 
-    def record(rows):
-        idx = rows_left[rows]
-        out.impulse[idx], out.peak_force[idx], out.max_compression[idx] = \
-            imp[rows], f_peak[rows], u_top[rows]
-        out.modal[idx] = z[rows]
-        if hollow:
-            out.barrel_share[idx] = share[rows]
+    def record(mask):
+        idx = st.rows[mask]
+        out.impulse[idx], out.peak_force[idx] = st.impulse[mask], st.f_peak[mask]
+        out.max_compression[idx], out.modal[idx] = st.u_top[mask], st.z[mask]
+        if out.barrel_share is not None:
+            out.barrel_share[idx] = st.share[mask]
         return idx
 
     t = 0.0
     for _ in range(int(np.ceil(max_time / h))):
-        base = np.matmul(c["R"], z.view(float)[:, :, None])[:, :, 0]
-        u2 = base[:, 0] + w + 0.5 * h * v
-        u1 = base[:, 1] + w + h * v
-        du = v + base[:, 2]
-        turned = (du_prev > 0) & (du <= 0) & (u > 0)
+        base = np.matmul(c.R, st.z.view(float)[:, :, None])[:, :, 0]
+        u2 = base[:, 0] + st.w + 0.5 * h * st.v
+        u1 = base[:, 1] + st.w + h * st.v
+        du = st.v + base[:, 2]
+        turned = (st.du_prev > 0) & (du <= 0) & (st.u > 0)
         if turned.any():  # the maximum compression fell inside the last step: refine u_top
-            u_top[turned] = np.maximum(u_top[turned], _hermite_max(
-                u_prev[turned], du_prev[turned], u[turned], du[turned], h))
-        u_prev, du_prev = u, du
-        l_top = np.log(u_top)
-        f0 = force(u, l_top)
+            st.u_top[turned] = np.maximum(st.u_top[turned], _hermite_max(
+                st.u_prev[turned], st.du_prev[turned], st.u[turned], du[turned], h))
+        st.u_prev, st.du_prev = st.u, du
+        l_top = np.log(st.u_top)
+        f0 = force(st.u, l_top)
         if hollow:  # the barrel's share of the stored energy when the total peaks
-            stored = contact.deformation_work(u, u_top, k1, alpha, c["beta"])
-            barrel = 0.5 * c["kh"] * base[:, 3] ** 2
-            up = stored + barrel > e_peak
-            e_peak = np.where(up, stored + barrel, e_peak)
-            share = np.where(up, barrel / np.where(up, stored + barrel, 1.0), share)
-        fa = force(u2 + c["ka"] * f0, l_top)
-        fb = force(u2 + c["ka"] * fa + c["b0"] * f0, l_top)
-        fc = force(u1 + c["c0"] * f0 + c["cb"] * fb + c["ca"] * fa, l_top)
+            stored = contact.deformation_work(st.u, st.u_top, k1, alpha, c.beta)
+            barrel = 0.5 * c.kh * base[:, 3] ** 2
+            up = stored + barrel > st.e_peak
+            st.e_peak = np.where(up, stored + barrel, st.e_peak)
+            st.share = np.where(up, barrel / np.where(up, stored + barrel, 1.0), st.share)
+        fa = force(u2 + c.ka * f0, l_top)
+        fb = force(u2 + c.ka * fa + c.b0 * f0, l_top)
+        fc = force(u1 + c.c0 * f0 + c.cb * fb + c.ca * fa, l_top)
         fab = fa + fb
         f_vec[:, 0, 0], f_vec[:, 0, 1], f_vec[:, 0, 2] = f0, fab, fc
-        z = c["e1"] * z + np.matmul(f_vec, c["B"])[:, 0, :].view(complex)
-        u_new = u1 + c["n0"] * f0 + c["n1"] * fab + c["n2"] * fc
+        st.z = c.e1 * st.z + np.matmul(f_vec, c.B)[:, 0, :].view(complex)
+        u_new = u1 + c.n0 * f0 + c.n1 * fab + c.n2 * fc
         s4 = f0 + 2.0 * fab + fc
-        w = w + h * v + c["w6"] * (f0 + fab)
-        v = v + c["v6"] * s4
-        imp = imp + (h / 6.0) * s4
-        f_peak = np.maximum(f_peak, f0)
-        u_top = np.maximum(u_top, u_new)
+        st.w = st.w + h * st.v + c.w6 * (f0 + fab)
+        st.v = st.v + c.v6 * s4
+        st.impulse = st.impulse + (h / 6.0) * s4
+        st.f_peak = np.maximum(st.f_peak, f0)
+        st.u_top = np.maximum(st.u_top, u_new)
         t += h
-        done = (u_new <= 0.0) & (u > 0.0)  # separation; finished rows are parked at u = -1 m
+        done = (u_new <= 0.0) & (st.u > 0.0)  # separation; finished rows are parked at u = -1 m
         if done.any():
             idx = record(done)
-            out.time[idx] = t - h + h * u[done] / (u[done] - u_new[done])
+            out.time[idx] = t - h + h * st.u[done] / (st.u[done] - u_new[done])
             out.separated[idx] = True
             live &= ~done
-            w[done], v[done], u_new[done] = -1.0, 0.0, -1.0
+            st.w[done], st.v[done], u_new[done] = -1.0, 0.0, -1.0
             n_live = int(live.sum())
             if n_live == 0:
                 return out
             if n_live < 0.6 * live.size:  # drop finished rows
                 keep = np.flatnonzero(live)
-                z, w, v, imp, u_new, u_top, f_peak, u_prev, du_prev, e_peak, share, rows_left, \
-                    live = (a[keep] for a in (z, w, v, imp, u_new, u_top, f_peak, u_prev,
-                                              du_prev, e_peak, share, rows_left, live))
-                c = {key: val[keep] for key, val in c.items()}
+                st.u = u_new
+                st, c, live = st.take(keep), c.take(keep), live[keep]
                 f_vec = np.empty((keep.size, 1, 3))
-        u = u_new
+                continue
+        st.u = u_new
     out.time[record(live)] = t  # the time cap came first: report that state, flagged
     return out
 

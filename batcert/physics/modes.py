@@ -1,10 +1,18 @@
-"""Bending modes of a :class:`~batcert.physics.batmodel.BatModel` (interface; see beam.py)."""
+"""Bending modes of a bat: the :class:`Modes` every engine reads, computed from the Timoshenko
+beam of :mod:`batcert.physics.beam`, cached in-process, and their nodes."""
 
 from __future__ import annotations
 
+import hashlib
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg
+import scipy.sparse.linalg
+
+from batcert.physics.batmodel import BatModel
+from batcert.physics.beam import N_RIGID, check_support, free_dofs, rigid_modes, assemble, mesh_nodes
 
 
 @dataclass(frozen=True)
@@ -32,3 +40,151 @@ class Modes:
     def frequencies_hz(self) -> np.ndarray:
         """Bending frequencies [Hz], rigid modes excluded, ascending."""
         return self.omega[self.n_rigid:] / (2 * np.pi)
+
+
+_DENSE_MAX = 256  # up to this many DOFs dense LAPACK beats sparse shift-invert (measured)
+_SHIFT = -(2 * np.pi * 10.0) ** 2  # shift-invert point below every bat mode [rad^2/s^2]
+
+
+def _eigenpairs(k, m, n_skip: int, n_want: int) -> tuple[np.ndarray, np.ndarray]:
+    """Eigenpairs ``n_skip .. n_skip + n_want - 1`` (ascending) of ``k x = lam m x``.
+
+    Dense ``scipy.linalg.eigh`` (LAPACK ``sygvx``, wanted pairs only) for small meshes; ARPACK
+    shift-invert (``scipy.sparse.linalg.eigsh``) about a point just below zero for large ones.
+    Vectors are returned mass-normalised.
+    """
+    n = k.shape[0]
+    if n <= _DENSE_MAX or n_skip + n_want >= n - 1:
+        lam, vec = scipy.linalg.eigh(k.toarray(), m.toarray(), driver="gvx", check_finite=False,
+                                     subset_by_index=[n_skip, n_skip + n_want - 1])
+    else:
+        lam, vec = scipy.sparse.linalg.eigsh(k, k=n_skip + n_want, M=m, sigma=_SHIFT,
+                                             which="LM", v0=np.ones(n))
+        order = np.argsort(lam)[n_skip:]
+        lam, vec = lam[order], vec[:, order]
+    vec = vec / np.sqrt(np.einsum("di,di->i", vec, m @ vec))
+    return lam, vec
+
+
+def compute_modes(bat: BatModel, support: str, pivot: float, n_modes: int = 24,
+                  refine: int = 1) -> Modes:
+    """Rigid-body and bending modes of ``bat``, mass-normalised.
+
+    Solves ``K phi = omega^2 M phi`` for the Timoshenko mesh of :func:`assemble` (dense LAPACK
+    for small meshes, sparse shift-invert for large ones, see :func:`_eigenpairs`). The rigid
+    modes are built exactly and put first with ``omega = 0``; each shape satisfies
+    ``phi^T M phi = 1`` for the full mass matrix (translation, rotary inertia and point masses), so that a
+    transverse point force ``F`` at ``z`` drives ``q_j'' + omega_j^2 q_j = phi_j(z) F`` (modal
+    superposition as in Nathan 2000; Meirovitch, *Fundamentals of Vibrations*, 2001, ch. 7). Shapes
+    are signed to be positive at the tip.
+
+    Parameters
+    ----------
+    bat : BatModel
+        The sliced bat.
+    support : {"free", "pinned"}
+        "free": two rigid modes (translation, rotation about the CG). "pinned": ``w = 0`` at the
+        pivot, one rigid mode (rotation about the pivot).
+    pivot : float
+        Pivot position from the knob [m]; always a mesh node.
+    n_modes : int
+        Number of bending modes kept (fewer if the mesh has fewer) [-].
+    refine : int
+        Elements per slice [-].
+
+    Returns
+    -------
+    Modes
+        Node positions [m], ``omega`` [rad/s], shapes [1/sqrt(kg)], rotations [1/(m sqrt(kg))].
+    """
+    check_support(bat, support, pivot)
+    if n_modes < 0:
+        raise ValueError(f"n_modes must be >= 0, got {n_modes}")
+    z_points = [pivot] + [zp for zp, _ in bat.point_masses]
+    fe = assemble(bat, mesh_nodes(bat, refine, z_points))
+    n_rigid = N_RIGID[support]
+    keep = free_dofs(fe, support, pivot)
+    n_bend = int(min(n_modes, keep.size - n_rigid))
+    rigid = rigid_modes(fe, support, pivot)
+    vectors = [rigid]
+    omega = [np.zeros(n_rigid)]
+    if n_bend > 0:
+        lam, vec = _eigenpairs(fe.stiffness[keep][:, keep], fe.mass[keep][:, keep],
+                               n_rigid, n_bend)
+        full = np.zeros((fe.z.size * 2, n_bend))
+        full[keep] = vec
+        full *= np.where(full[-2] < 0, -1.0, 1.0)
+        vectors.append(full)
+        omega.append(np.sqrt(np.clip(lam, 0.0, None)))
+    phi = np.concatenate(vectors, axis=1).T
+    return Modes(support=support, pivot=float(pivot), z=fe.z, omega=np.concatenate(omega),
+                 shapes=np.ascontiguousarray(phi[:, 0::2]),
+                 rotations=np.ascontiguousarray(phi[:, 1::2]), n_rigid=n_rigid)
+
+
+def mode_nodes(modes: Modes, j: int) -> np.ndarray:
+    """Nodes (zero crossings of the transverse shape) of bending mode ``j``.
+
+    Parameters
+    ----------
+    modes : Modes
+        Computed modes.
+    j : int
+        Bending mode number, 1 = fundamental (rigid modes are not counted), as in Nathan 2000
+        Table II.
+
+    Returns
+    -------
+    numpy.ndarray
+        Node positions from the knob [m], ascending, linearly interpolated between mesh nodes. A
+        pin counts as a node.
+    """
+    n_bend = modes.omega.size - modes.n_rigid
+    if not 1 <= j <= n_bend:
+        raise ValueError(f"bending mode number must be in 1..{n_bend}, got {j}")
+    s = modes.shapes[modes.n_rigid + j - 1]
+    s = np.where(np.abs(s) <= 1e-9 * np.abs(s).max(), 0.0, s)
+    exact = modes.z[s == 0.0]
+    a, b = s[:-1], s[1:]
+    cross = a * b < 0
+    z0, z1 = modes.z[:-1][cross], modes.z[1:][cross]
+    crossing = z0 + (z1 - z0) * a[cross] / (a[cross] - b[cross])
+    return np.sort(np.concatenate([exact, crossing]))
+
+
+_CACHE: OrderedDict[tuple, Modes] = OrderedDict()
+_CACHE_SIZE = 64
+
+
+def model_hash(bat: BatModel) -> str:
+    """SHA-256 of the arrays that define the beam (edges, section properties, point masses)."""
+    h = hashlib.sha256()
+    for a in (bat.z_edges, bat.linear_density, bat.rotary_inertia, bat.bending_stiffness,
+              bat.shear_stiffness, np.asarray(bat.point_masses, dtype=float).reshape(-1)):
+        h.update(np.ascontiguousarray(a, dtype=float).tobytes())
+        h.update(b"|")
+    return h.hexdigest()
+
+
+def cached_modes(bat: BatModel, support: str, pivot: float, n_modes: int = 24,
+                 refine: int = 1) -> Modes:
+    """:func:`compute_modes` memoised in-process (LRU, 64 entries) on the model's content hash.
+
+    The returned arrays are read-only because they are shared between callers.
+    """
+    key = (model_hash(bat), support, float(pivot), int(n_modes), int(refine))
+    if key in _CACHE:
+        _CACHE.move_to_end(key)
+        return _CACHE[key]
+    modes = compute_modes(bat, support, pivot, n_modes, refine)
+    for a in (modes.z, modes.omega, modes.shapes, modes.rotations):
+        a.flags.writeable = False
+    _CACHE[key] = modes
+    if len(_CACHE) > _CACHE_SIZE:
+        _CACHE.popitem(last=False)
+    return modes
+
+
+def clear_mode_cache() -> None:
+    """Empty the in-process mode cache."""
+    _CACHE.clear()

@@ -9,9 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from batcert.physics.ball import BallModel
 from batcert.physics.batmodel import BatModel
-from batcert.physics.engine import ImpactBatch, ImpactOutcome, register
 
 
 def recoil_factor_pivoted(ball_mass, moi_pivot, impact_location):
@@ -114,18 +112,19 @@ def recoil_factor(bat: BatModel, ball_mass: float, pivot: float, impact_location
 
 
 def momentum_outcome(bat: BatModel, ball_mass: float, pivot: float, support: str,
-                     impact_location, pitch_speed, bat_angular_speed, exit_speed_):
+                     impact_location, pitch_speed, bat_angular_speed, exit_speed_, k=None):
     """Bat angular speed after impact [rad/s] and the ball-bat COR [-] from momentum balance.
 
     The impulse on the bat is ``m (v_p - v_b)``; the bat's speed at the impact point changes by
     ``k (v_p - v_b)`` with the support's recoil factor ``k``. Pinned: ``w2`` is Smith 2001 Eq. 1
     and ``e`` Eq. 3. Free: ``w2`` is the free bat's angular velocity after impact,
     ``w1 + m (v_p - v_b) d / I_cg`` (``d`` the impact point's distance from the CG), and ``e`` is
-    Eq. 3 with the impact point's speed after impact in place of ``w2 r``.
+    Eq. 3 with the impact point's speed after impact in place of ``w2 r``. ``k`` may be passed
+    when the caller already has it (:func:`recoil_factor`).
     """
     r = np.asarray(impact_location, dtype=float)
     vp, w1, vb = (np.asarray(a, dtype=float) for a in (pitch_speed, bat_angular_speed, exit_speed_))
-    k = recoil_factor(bat, ball_mass, pivot, r, support)
+    k = recoil_factor(bat, ball_mass, pivot, r, support) if k is None else np.asarray(k, float)
     point_after = w1 * r + k * (vp - vb)
     cor = (point_after - vb) / (vp - w1 * r)
     if support == "pinned":
@@ -145,29 +144,3 @@ def rigid_sweet_spot(moi_pivot, ball_mass, pitch_speed, bat_angular_speed):
     with np.errstate(divide="ignore", invalid="ignore"):
         a = np.where(w1 != 0, vp / np.where(w1 != 0, w1, 1.0), np.nan)
         return a + np.sqrt(moi_pivot / ball_mass + a**2)
-
-
-@register("rigid")
-class RigidEngine:
-    """Closed-form rigid-bat engine: exact and instant; the stiff limit of the flexible engine.
-
-    The ball-bat COR is the ball's rigid-wall COR at the impact's relative normal speed.
-    ``support="pinned"`` uses k = m r^2 / I about the pivot; ``"free"`` the free-bat k.
-    """
-
-    name = "rigid"
-
-    def __init__(self) -> None:
-        pass
-
-    def settings(self) -> dict:
-        return {"engine": "rigid", "cor": "ball rigid-wall COR at the relative speed"}
-
-    def solve(self, bat: BatModel, ball: BallModel, pivot: float, batch: ImpactBatch,
-              support: str = "pinned") -> ImpactOutcome:
-        r, vp, w1 = batch.impact_location, batch.pitch_speed, batch.bat_angular_speed
-        e = ball.cor(batch.relative_speed)
-        k = recoil_factor(bat, ball.mass, pivot, r, support)
-        vb = exit_speed(e, k, vp, w1 * r)
-        w2, cor = momentum_outcome(bat, ball.mass, pivot, support, r, vp, w1, vb)
-        return ImpactOutcome(exit_speed=vb, bat_angular_speed_after=w2, cor=cor)

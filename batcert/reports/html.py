@@ -1,24 +1,31 @@
-"""The certification report as one self-contained HTML file (inline CSS and SVG, no scripts)."""
+"""Reports as self-contained HTML pages (inline CSS and SVG, no scripts, nothing loaded)."""
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from batcert.reports import build_view, environment, metric_name, svg
+from batcert.reports import svg
+from batcert.reports.format import metric_name
+from batcert.reports.table import Badge
+from batcert.reports.templates import render_template
 from batcert.units import Display, to_us
 
 if TYPE_CHECKING:
     from markupsafe import Markup
 
-    from batcert.results import RunResult
+    from batcert.results.compare import ComparisonResult
+    from batcert.results.league import LeagueResult
+    from batcert.results.run import RunResult
 
 X_LABEL = "Impact location from the pivot [m]"
 
 
 def cell(value: object) -> Markup:
-    """A table cell's content: SI on the first line, US customary below it."""
+    """A table cell's content: a badge, SI with US customary below it, or escaped text."""
     from markupsafe import Markup, escape
 
+    if isinstance(value, Badge):
+        return Markup('<span class="badge badge-{}">{}</span>').format(value.css, value.text)
     if isinstance(value, Display):
         us = Markup('<span class="us">{}</span>').format(value.us) if value.us else ""
         return Markup('<span class="si">{}</span>{}').format(value.si, us)
@@ -71,14 +78,28 @@ def metric_chart(result: RunResult) -> str:
     )
 
 
-def render_html(result: RunResult) -> str:
-    """The full report as an HTML5 document."""
+FILTERS = {"cell": cell}
+
+
+def run_html(result: RunResult) -> str:
+    """The certificate of one protocol run as an HTML5 document."""
     from markupsafe import Markup
 
-    view = build_view(result)
+    from batcert.reports.run_view import run_view
+    view = run_view(result)
     view["charts"] = [Markup(exit_speed_chart(result))]
     if view["show_metric_plot"]:
         view["charts"].append(Markup(metric_chart(result)))
-    env = environment().overlay()
-    env.filters.update(cell=cell)
-    return env.get_template("report.html.j2").render(**view)
+    return render_template("report.html.j2", view, FILTERS)
+
+
+def comparison_html(result: ComparisonResult) -> str:
+    """A comparison of bats as one styled HTML5 page."""
+    from batcert.reports.compare_view import comparison_view
+    return render_template("compare.html.j2", comparison_view(result), FILTERS)
+
+
+def league_html(result: LeagueResult) -> str:
+    """A league evaluation as one styled HTML5 page."""
+    from batcert.reports.league_view import league_view
+    return render_template("league.html.j2", league_view(result), FILTERS)

@@ -1,15 +1,18 @@
-"""The certification report as GitHub-flavoured Markdown (tables only; plots are in the HTML)."""
+"""Reports as GitHub-flavoured Markdown (tables and text; the plots are in the HTML)."""
 
 from __future__ import annotations
 
 import re
 from typing import TYPE_CHECKING
 
-from batcert.reports import Table, build_view, environment
+from batcert.reports.table import Table
+from batcert.reports.templates import render_template
 from batcert.units import Display
 
 if TYPE_CHECKING:
-    from batcert.results import RunResult
+    from batcert.results.compare import ComparisonResult
+    from batcert.results.league import LeagueResult
+    from batcert.results.run import RunResult
 
 _CELL_SPECIALS = re.compile(r"([\\`*\[\]|<>]|(?<!\w)_|_(?!\w))")
 _TEXT_SPECIALS = re.compile(r"([\\`*\[\]<>])")
@@ -28,18 +31,31 @@ def md_cell(value: object) -> str:
 
 
 def md_table(table: Table) -> str:
-    """A GFM pipe table; numeric columns are right-aligned."""
-    numeric = table.numeric or [False] * len(table.headers)
+    """A GFM pipe table (summary rows after the body); numeric columns are right-aligned."""
+    numeric = [table.is_numeric(i) for i in range(len(table.headers))]
     lines = [
         "| " + " | ".join(md_cell(h) for h in table.headers) + " |",
         "|" + "|".join("---:" if n else ":---" for n in numeric) + "|",
     ]
-    lines += ["| " + " | ".join(md_cell(c) for c in row) + " |" for row in table.rows]
+    lines += ["| " + " | ".join(md_cell(c) for c in row) + " |"
+              for row in [*table.rows, *table.foot]]
     return "\n".join(lines)
 
 
-def render_markdown(result: RunResult) -> str:
-    """The full report as Markdown text."""
-    env = environment().overlay()
-    env.filters.update(md_text=md_text, md_cell=md_cell, md_table=md_table)
-    return env.get_template("report.md.j2").render(**build_view(result))
+FILTERS = {"md_text": md_text, "md_cell": md_cell, "md_table": md_table}
+
+
+def run_markdown(result: RunResult) -> str:
+    """The certificate of one protocol run."""
+    from batcert.reports.run_view import run_view
+    return render_template("report.md.j2", run_view(result), FILTERS)
+
+
+def comparison_markdown(result: ComparisonResult) -> str:
+    from batcert.reports.compare_view import comparison_view
+    return render_template("compare.md.j2", comparison_view(result, charts=False), FILTERS)
+
+
+def league_markdown(result: LeagueResult) -> str:
+    from batcert.reports.league_view import league_view
+    return render_template("league.md.j2", league_view(result), FILTERS)

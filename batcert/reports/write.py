@@ -9,47 +9,35 @@ were.
 
 from __future__ import annotations
 
+import hashlib
 import os
 import re
 import tempfile
 import unicodedata
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import Any
 
-if TYPE_CHECKING:
-    from batcert.results import RunResult
-
-
-def _markdown(result: RunResult) -> str:
-    from batcert.reports.markdown import render_markdown
-
-    return render_markdown(result)
+SUFFIXES = {"md": ".md", "html": ".html", "json": ".json"}  # report formats and file suffixes
 
 
-def _html(result: RunResult) -> str:
-    from batcert.reports.html import render_html
+@dataclass(frozen=True)
+class ReportKind:
+    """How one kind of result is reported: its file stem and a renderer per format."""
 
-    return render_html(result)
+    stem: Callable[[Any], str]
+    markdown: Callable[[Any], str]
+    html: Callable[[Any], str]
 
-
-def _json(result: RunResult) -> str:
-    return result.to_json() + "\n"
-
-
-# format -> (file suffix, renderer); renderers are imported lazily to keep start-up fast
-FORMATS: dict[str, tuple[str, Callable[[RunResult], str]]] = {
-    "md": (".md", _markdown),
-    "html": (".html", _html),
-    "json": (".json", _json),
-}
-
-
-def render(result: RunResult, fmt: str) -> str:
-    """One report as text: ``fmt`` is ``"md"``, ``"html"`` or ``"json"``."""
-    if fmt not in FORMATS:
-        raise ValueError(f"unknown report format {fmt!r} (choose from {', '.join(FORMATS)})")
-    return FORMATS[fmt][1](result)
+    def render(self, result: Any, fmt: str) -> str:
+        if fmt == "md":
+            return self.markdown(result)
+        if fmt == "html":
+            return self.html(result)
+        if fmt == "json":
+            return result.to_json() + "\n"
+        raise ValueError(f"unknown report format {fmt!r} (choose from {', '.join(SUFFIXES)})")
 
 
 def slugify(text: str, fallback: str = "report") -> str:
@@ -59,35 +47,67 @@ def slugify(text: str, fallback: str = "report") -> str:
     return slug or fallback
 
 
-def default_stem(result: RunResult) -> str:
+def run_stem(result: Any) -> str:
     """``<bat-slug>--<protocol-id>``, e.g. ``ash-34-in--proposed``."""
     return f"{slugify(result.bat, 'bat')}--{slugify(result.protocol, 'protocol')}"
 
 
-def write_reports(
-    result: RunResult,
-    out_dir: Path,
-    formats: Sequence[str] = ("md", "html", "json"),
-    stem: str | None = None,
-) -> list[Path]:
-    """Render ``result`` in each format and write ``out_dir/<stem>.<ext>`` atomically.
+def _stem(kind: str, what: str, bats: str) -> str:
+    stem = f"{kind}--{slugify(what)}--{slugify(bats)}"
+    if len(stem) > 120:  # keep file names short; the hash keeps different inputs apart
+        stem = stem[:100] + "-" + hashlib.sha256(stem.encode()).hexdigest()[:10]
+    return stem
 
-    Returns the written paths in the order of ``formats`` (duplicates dropped). ``out_dir`` is
-    created when missing. Raises ``ValueError`` for an unknown format or a stem that is not a
-    plain file name; any rendering or writing error propagates after cleaning up, leaving no
-    partial or temporary file and existing reports untouched.
+
+def comparison_stem(result: Any) -> str:
+    """``compare--<study>`` or ``compare--<protocol ids>``, then the bats' file stems."""
+    what = result.study or "+".join(p.protocol for p in result.protocols)
+    return _stem("compare", what, "+".join(Path(b.path).stem for b in result.bats))
+
+
+def league_stem(result: Any) -> str:
+    return _stem("league", result.league, "+".join(Path(b.path).stem for b in result.bats))
+
+
+def _kind(result: Any) -> ReportKind:
+    """The report kind of a result (renderers imported lazily to keep start-up fast)."""
+    from batcert.reports import html, markdown
+    from batcert.results.compare import ComparisonResult
+    from batcert.results.league import LeagueResult
+    from batcert.results.run import RunResult
+    kinds = {RunResult: ReportKind(run_stem, markdown.run_markdown, html.run_html),
+             ComparisonResult: ReportKind(comparison_stem, markdown.comparison_markdown,
+                                          html.comparison_html),
+             LeagueResult: ReportKind(league_stem, markdown.league_markdown, html.league_html)}
+    return kinds[type(result)]
+
+
+def render(result: Any, fmt: str) -> str:
+    """One report of a run, comparison or league result as text: ``fmt`` is md, html or json."""
+    return _kind(result).render(result, fmt)
+
+
+def write_reports(result: Any, out_dir: Path, formats: Sequence[str] = ("md", "html", "json"),
+                  stem: str | None = None) -> list[Path]:
+    """Render ``result`` in each format and write ``out_dir/<stem>.<ext>`` as one set.
+
+    Every format is rendered before anything is written; then the files are staged and replaced
+    together (:func:`write_texts`). Returns the paths in the order of ``formats`` (duplicates
+    dropped). Raises ``ValueError`` for an unknown format or a stem that is not a plain file
+    name; any rendering or writing error propagates after cleaning up, leaving no partial or
+    temporary file and existing reports untouched.
     """
     wanted = list(dict.fromkeys(formats))
-    unknown = [f for f in wanted if f not in FORMATS]
+    unknown = [f for f in wanted if f not in SUFFIXES]
     if unknown:
         raise ValueError(f"unknown report format(s) {', '.join(map(repr, unknown))} "
-                         f"(choose from {', '.join(FORMATS)})")
-    stem = default_stem(result) if stem is None else stem
+                         f"(choose from {', '.join(SUFFIXES)})")
+    kind = _kind(result)
+    stem = kind.stem(result) if stem is None else stem
     if not stem or stem in (".", "..") or "/" in stem or "\\" in stem or "\0" in stem:
         raise ValueError(f"report stem {stem!r} must be a plain file name")
-
     out_dir = Path(out_dir)
-    return write_texts({out_dir / f"{stem}{FORMATS[f][0]}": render(result, f) for f in wanted})
+    return write_texts({out_dir / f"{stem}{SUFFIXES[f]}": kind.render(result, f) for f in wanted})
 
 
 def write_texts(texts: dict[Path, str]) -> list[Path]:

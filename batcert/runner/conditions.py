@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from batcert.specs.protocol import ConditionSpec
 
 
 @dataclass(frozen=True)
@@ -35,25 +40,27 @@ def _setup(pitch: float, moving_bat: bool) -> str:
     return "pitched-and-swung" if moving_bat else "stationary-bat"
 
 
-def conditions_from_spec(spec_conditions: list[dict], bat_length: float, pivot: float
-                         ) -> list[Condition]:
+def conditions_from_spec(spec_conditions: Sequence[ConditionSpec], bat_length: float,
+                         pivot: float) -> list[Condition]:
+    """The protocol's conditions as speeds: matched relative speeds, explicit angular speeds, or
+    a linear bat speed at a distance from the tip converted to an angular speed about the pivot."""
     out = []
     for c in spec_conditions:
-        if c["relative_speed"] is not None:
-            v = c["relative_speed"]
-            if c["stationary"] == "bat":
+        if c.relative_speed is not None:
+            v = c.relative_speed
+            if c.stationary == "bat":
                 pitch, moving = v, False
-            elif c["stationary"] == "ball":
+            elif c.stationary == "ball":
                 pitch, moving = 0.0, True
             else:
-                pitch, moving = c["pitch_speed"], True
-            out.append(Condition(c["name"], c["description"] or "", _setup(pitch, moving), pitch,
+                pitch, moving = c.pitch_speed, True
+            out.append(Condition(c.name, c.description or "", _setup(pitch, moving), pitch,
                                  None, v))
             continue
-        w1 = c["bat_angular_speed"]
+        w1 = c.bat_angular_speed
         if w1 is None:  # linear bat speed given at a distance from the tip
-            w1 = c["bat_speed"] / (bat_length - c["bat_speed_from_tip"] - pivot)
-        pitch = c["pitch_speed"]
-        out.append(Condition(c["name"], c["description"] or "", _setup(pitch, w1 > 0), pitch, w1,
+            w1 = c.bat_speed / (bat_length - c.bat_speed_from_tip - pivot)
+        pitch = c.pitch_speed
+        out.append(Condition(c.name, c.description or "", _setup(pitch, w1 > 0), pitch, w1,
                              None))
     return out

@@ -1,12 +1,24 @@
 """Impact-location search: coarse sweep over the window, then refinement to the resolution.
 
 All conditions are searched together: one engine batch for the coarse sweep (conditions x
-locations) and one for the refinement around each condition's maximum.
+locations) and one for the refinement around each condition's maximum (of the exit speed, and of
+the metric when the impact rule needs it).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
 import numpy as np
+
+from batcert.runner.metrics import ImpactMetrics, Metric
+from batcert.runner.rules import Peaks
+
+if TYPE_CHECKING:
+    from batcert.runner.conditions import Condition
+    from batcert.runner.runner import Bench
+    from batcert.specs.protocol import LocationSpec
 
 
 def sweep_grid(bat_length: float, pivot: float, window_from_tip: tuple[float, float],
@@ -41,3 +53,41 @@ def parabolic_peak(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray
     shift = np.clip(shift, -0.5, 0.5)
     dx = x[:, 1] - x[:, 0]
     return x[rows, i] + shift * dx, i
+
+
+def _on_edge(values: np.ndarray) -> np.ndarray:
+    return np.isin(np.argmax(values, axis=1), (0, values.shape[1] - 1))
+
+
+@dataclass(frozen=True)
+class Search:
+    """The coarse sweep of every condition and the peaks located from it."""
+
+    grid: np.ndarray  # sweep locations [m from pivot], (n_loc,)
+    coarse: ImpactMetrics  # every metric on the grid, (n_cond, n_loc)
+    coarse_metric: np.ndarray  # the protocol metric on the grid, (n_cond, n_loc)
+    peaks: Peaks
+
+
+def locate(bench: Bench, conds: list[Condition], location: LocationSpec, metric: Metric,
+           needs_metric_peak: bool, cop: float) -> Search:
+    """Sweep the window and locate each condition's sweet spot (and metric maximum)."""
+    bat = bench.built.model
+    tip = bat.length - bench.pivot
+    n = len(conds)
+    grid = sweep_grid(bat.length, bench.pivot, location.window, location.sweep_points)
+    coarse, _ = bench.solve(conds, np.tile(grid, (n, 1)))
+    m_coarse = metric.value(coarse)
+    targets = [coarse.exit_speed] + ([m_coarse] if needs_metric_peak else [])
+    fine_r = np.concatenate([refine_grid(grid, np.argmax(t, axis=1), location.resolution)
+                             for t in targets])
+    fine, _ = bench.solve(conds * len(targets), fine_r)
+    sweet, _ = parabolic_peak(fine_r[:n], fine.exit_speed[:n])
+    sweet_edge = _on_edge(coarse.exit_speed)
+    peak, peak_edge, flat = sweet, sweet_edge, np.zeros(n, bool)
+    if needs_metric_peak:
+        peak, _ = parabolic_peak(fine_r[n:], metric.value(fine)[n:])
+        peak_edge = _on_edge(m_coarse)
+        flat = np.ptp(m_coarse, axis=1) <= 1e-9 * np.abs(m_coarse).max(axis=1)
+    peaks = Peaks(sweet, sweet_edge, peak, peak_edge, flat, cop, tip, location.from_tip)
+    return Search(grid, coarse, m_coarse, peaks)

@@ -1,7 +1,9 @@
-"""Performance metrics from the speeds before and after impact (Smith 2001 Eqs. 1-5).
+"""Performance metrics and how conditions are aggregated: the two registries of the protocol's
+``metric`` and ``aggregate`` fields.
 
-Each metric is a named entry of :data:`METRICS` reading an :class:`ImpactMetrics` record, so a new
-metric is one line here and a name in the protocol schema.
+Each :class:`Metric` holds its name (as written in protocol files and JSON), its display word,
+its documentation, the function that reads it from an :class:`ImpactMetrics` record, its unit and
+its display precision; nothing else in batcert lists metrics. A new metric is one entry here.
 """
 
 from __future__ import annotations
@@ -16,6 +18,8 @@ from batcert.physics import rigid
 
 @dataclass(frozen=True)
 class ImpactMetrics:
+    """Speeds and every metric of a batch of impacts, arrays of one shape."""
+
     impact_location: np.ndarray  # [m from pivot]
     pitch_speed: np.ndarray  # [m/s], negative toward the bat
     bat_angular_speed: np.ndarray  # [rad/s]
@@ -29,11 +33,17 @@ class ImpactMetrics:
     bbcor: np.ndarray  # e_A (1 + k) + k
     collision_efficiency: np.ndarray  # e_A
 
+    def reshape(self, shape: tuple[int, ...]) -> ImpactMetrics:
+        return ImpactMetrics(**{k: np.asarray(v).reshape(shape) for k, v in vars(self).items()})
+
 
 def impact_metrics(impact_location, pitch_speed, bat_angular_speed, exit_speed,
                    bat_angular_speed_after, cor, ball_cor_at, k) -> ImpactMetrics:
-    """All metrics for a batch. ``ball_cor_at`` maps relative speed [m/s] to the ball's COR;
-    ``k`` is the bat's recoil factor at each impact (:func:`rigid.recoil_factor`)."""
+    """All metrics for a batch (Smith 2001 Eqs. 1-5; ASTM F2219).
+
+    ``ball_cor_at`` maps relative speed [m/s] to the ball's COR; ``k`` is the bat's recoil factor
+    at each impact, as the engine computed it (:func:`batcert.physics.rigid.recoil_factor`).
+    """
     r = np.asarray(impact_location, float)
     rel = bat_angular_speed * r - pitch_speed
     e_b = ball_cor_at(rel)
@@ -48,16 +58,46 @@ def impact_metrics(impact_location, pitch_speed, bat_angular_speed, exit_speed,
         bbcor=rigid.bbcor_from_collision_efficiency(e_a, k), collision_efficiency=e_a)
 
 
-METRICS: dict[str, Callable[[ImpactMetrics], np.ndarray]] = {
-    "exit-speed": lambda m: m.exit_speed,
-    "besr": lambda m: m.besr,
-    "bpf": lambda m: m.bpf,
-    "bbcor": lambda m: m.bbcor,
-    "collision-efficiency": lambda m: m.collision_efficiency,
-}
+@dataclass(frozen=True)
+class Metric:
+    """One performance metric: name in files and JSON, display word, docs, how to read it."""
 
-AGGREGATES: dict[str, Callable[[np.ndarray], float]] = {
-    "mean": lambda v: float(np.mean(v)),
-    "min": lambda v: float(np.min(v)),
-    "max": lambda v: float(np.max(v)),
-}
+    name: str
+    display: str  # as shown in reports and the terminal
+    doc: str
+    value: Callable[[ImpactMetrics], np.ndarray]
+    unit: str = ""  # SI unit of the value; "" for dimensionless metrics
+    digits: int = 4  # decimals shown for the SI value (exit speed: m/s)
+
+
+METRICS: dict[str, Metric] = {m.name: m for m in (
+    Metric("exit-speed", "exit speed", "Ball speed after impact, v_b.", lambda m: m.exit_speed,
+           "m/s", 2),
+    Metric("besr", "BESR", "NCAA ball exit speed ratio, Smith 2001 Eq. 2 (assumes w2 = w1).",
+           lambda m: m.besr),
+    Metric("bpf", "BPF", "Bat performance factor e / e_b, Smith 2001 Eq. 5 (w2 from Eq. 1).",
+           lambda m: m.bpf),
+    Metric("bbcor", "BBCOR", "Ball-bat COR from the collision efficiency, e_A (1 + k) + k "
+           "(ASTM F2219, NCAA).", lambda m: m.bbcor),
+    Metric("collision-efficiency", "collision efficiency e_A",
+           "e_A = (v_b - v_bat) / (v_pitch + v_bat) (ASTM F2219).",
+           lambda m: m.collision_efficiency),
+)}
+
+
+@dataclass(frozen=True)
+class Aggregate:
+    """How a protocol combines its conditions' metric values into one."""
+
+    name: str
+    display: str
+    doc: str
+    combine: Callable[[np.ndarray], float]
+
+
+AGGREGATES: dict[str, Aggregate] = {a.name: a for a in (
+    Aggregate("mean", "mean", "Arithmetic mean over the conditions.",
+              lambda v: float(np.mean(v))),
+    Aggregate("min", "minimum", "Smallest condition value.", lambda v: float(np.min(v))),
+    Aggregate("max", "maximum", "Largest condition value.", lambda v: float(np.max(v))),
+)}

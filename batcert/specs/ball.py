@@ -8,9 +8,9 @@ from typing import Any
 
 from batcert.errors import Collector
 from batcert.physics.ball import BallModel
-from batcert.specs.common import HEADER_FIELDS, sha256_of
+from batcert.specs.common import HEADER_FIELDS, Source, load_checked
 from batcert.specs.schema import (Field, FieldError, Kind, Schema, choice, number, quantity,
-                                  section, text, validate)
+                                  section, text)
 from batcert.specs.yamlio import LocatedList, load_yaml
 from batcert.units import UnitError, parse_quantity
 
@@ -70,18 +70,26 @@ BALL_SCHEMA = Schema("ball", (
 
 @dataclass(frozen=True)
 class BallSpec:
-    path: str
-    sha256: str
+    """A validated ball file and the ball model it defines."""
+
+    source: Source
     name: str
     model: BallModel
 
+    @property
+    def path(self) -> str:
+        return self.source.path
+
+    @property
+    def sha256(self) -> str:
+        return self.source.sha256
+
 
 def load_ball(path: str | Path) -> BallSpec:
+    """Read and validate a ball file; raise InputError with every problem of the file."""
     data = load_yaml(path)
-    errors = Collector(path)
-    v = validate(data, BALL_SCHEMA, errors)
-    errors.raise_if_any()
+    v = load_checked(path, BALL_SCHEMA, data)
     c = v["contact"]
     model = BallModel(v["name"], v["mass"], v["radius"], v["cor"][0], v["cor"][1],
                       c["model"], c["k1"], c["alpha"])
-    return BallSpec(str(path), sha256_of(path), v["name"], model)
+    return BallSpec(Source.of(path, data), v["name"], model)

@@ -1,25 +1,23 @@
-"""Bat specification: YAML fields, validation, and conversion to a reconciled BatModel."""
+"""Bat specification: the YAML fields of a bat file and their validation (no physics).
+
+The bat model is built from a :class:`BatSpec` by :func:`batcert.model.build.build_bat`.
+"""
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from batcert.errors import Collector, InputError, Problem
-from batcert.physics.batmodel import BatModel, Material
-from batcert.physics.calibrate import calibrate_stiffness
-from batcert.physics.reconcile import (MeasuredMassProperties, ModelError, Reconciliation,
-                                       build_geometry, reconcile)
-from batcert.specs.common import HEADER_FIELDS, pairs, sha256_of
+from batcert.conventions import DEFAULT_PIVOT
+from batcert.errors import Collector
+from batcert.physics.batmodel import Material
+from batcert.specs.common import HEADER_FIELDS, Source, load_checked, pairs, spec_from
 from batcert.specs.materials import LIBRARY
 from batcert.specs.schema import (Field, FieldError, Kind, Schema, choice, lookup, number, one_of,
                                   quantity, section, text, validate)
 from batcert.specs.yamlio import Located, load_yaml
 from batcert.units import to_us
-
-G = 9.80665  # standard gravity [m/s^2]
 
 MATERIAL_SCHEMA = Schema("inline material", (
     Field("name", text(), "Label shown in reports.", default="custom"),
@@ -73,7 +71,7 @@ def _check_measured(v: dict, data: Located, errors: Collector, path: str) -> Non
 
 MEASURED_SCHEMA = Schema("measured mass properties", (
     Field("pivot", quantity("length", minimum=0.0), "Pivot of the MOI (and origin of `cg`), "
-          "from the knob end.", default=0.1524),
+          "from the knob end.", default=DEFAULT_PIVOT),
     Field("mass", quantity("mass", positive=True), "Measured mass.", required=True),
     Field("balance_point", quantity("length", positive=True), "CG from the knob end (F2398 "
           "balance point)."),
@@ -136,73 +134,55 @@ BAT_SCHEMA = Schema("bat", (
 
 
 @dataclass(frozen=True)
-class BatSpec:
-    path: str
-    sha256: str
-    name: str
-    values: dict  # validated SI values by field name
+class MeasuredSpec:
+    """The ``measured:`` block: what a lab measured on the bat (SI; None where not given)."""
 
-    @property
-    def length(self) -> float:
-        return self.values["length"]
+    pivot: float  # pivot of the MOI and origin of `cg` [m from knob]
+    mass: float  # [kg]
+    balance_point: float | None  # CG [m from knob]
+    cg: float | None  # CG [m from pivot]
+    moi: float | None  # about the pivot [kg m^2]
+    radius_of_gyration: float | None  # about the CG [m]
+    pendulum_period: float | None  # ASTM F2398 period about the pivot [s]
+    first_bending_frequency: float | None  # free-free [Hz]
 
 
 @dataclass(frozen=True)
-class BuiltBat:
-    spec: BatSpec
-    geometry: BatModel  # profile x material, before reconciliation
-    model: BatModel  # reconciled
-    reconciliation: Reconciliation
-    measured: MeasuredMassProperties | None
-    first_bending_frequency: float | None
+class BatSpec:
+    """A validated bat file (SI values, field names as in the file)."""
+
+    source: Source
+    name: str
+    description: str | None
+    reference: str | None
+    version: str | None
+    construction: str  # solid | hollow
+    length: float  # [m]
+    profile: tuple[tuple[float, ...], tuple[float, ...]]  # stations [m from knob], diameters [m]
+    wall: float | tuple[tuple[float, ...], tuple[float, ...]] | None  # [m] or stations, walls
+    material: Material
+    knob_mass: float  # [kg]
+    end_cap_mass: float  # [kg]
+    shear_correction: float | None  # [-]
+    barrel_effective_width: float | None  # [m]
+    slice_length: float  # [m]
+    measured: MeasuredSpec | None
+    reconcile: str  # density-profile | point-masses | none
+
+    @property
+    def path(self) -> str:
+        return self.source.path
+
+    @property
+    def sha256(self) -> str:
+        return self.source.sha256
 
 
 def load_bat(path: str | Path) -> BatSpec:
+    """Read and validate a bat file; raise InputError with every problem of the file."""
     data = load_yaml(path)
-    errors = Collector(path)
-    values = validate(data, BAT_SCHEMA, errors)
-    errors.raise_if_any()
-    return BatSpec(str(path), sha256_of(path), values["name"], values)
-
-
-def measured_properties(v: dict) -> MeasuredMassProperties:
-    p = v["pivot"]
-    bp = v["balance_point"] if v["balance_point"] is not None else (
-        p + v["cg"] if v["cg"] is not None else None)
-    moi = v["moi"]
-    if v["radius_of_gyration"] is not None:
-        moi = v["mass"] * (v["radius_of_gyration"] ** 2 + (bp - p) ** 2)
-    if v["pendulum_period"] is not None:
-        moi = v["mass"] * G * (bp - p) * v["pendulum_period"] ** 2 / (4 * math.pi**2)
-    return MeasuredMassProperties(v["mass"], bp, moi, p)
-
-
-def build_bat(spec: BatSpec) -> BuiltBat:
-    """Geometry and reconciliation; model errors are reported against the spec file's lines."""
-    v = spec.values
-    try:
-        wall_z = wall_t = None
-        if v["construction"] == "hollow":
-            if isinstance(v["wall"], tuple):
-                wall_z, wall_t = v["wall"]
-            else:
-                wall_z, wall_t = (0.0,), (v["wall"],)
-        geometry = build_geometry(
-            v["name"], v["construction"], v["length"], v["profile"][0], v["profile"][1],
-            v["material"], wall_z, wall_t, v["knob_mass"], v["end_cap_mass"], v["shear_correction"],
-            v["slice_length"], v["barrel_effective_width"])
-        meas = measured_properties(v["measured"]) if v["measured"] else None
-        model, rec = reconcile(geometry, meas, v["reconcile"])
-        freq = v["measured"]["first_bending_frequency"] if v["measured"] else None
-        if freq is not None:
-            model, corr = calibrate_stiffness(model, freq, meas.pivot)
-            rec = Reconciliation(rec.method, rec.description + f"; stiffness x "
-                                 f"{corr['stiffness_scale']:.3f} to match the measured "
-                                 f"{freq:.0f} Hz fundamental (model {corr['model_first_frequency_hz']:.0f} Hz)",
-                                 {**rec.corrections, **corr})
-    except ModelError as exc:
-        data = load_yaml(spec.path)
-        keys = exc.field.split(".")
-        line = lookup(data, *keys)[0]
-        raise InputError([Problem(spec.path, line, exc.field, str(exc))]) from None
-    return BuiltBat(spec, geometry, model, rec, meas, freq)
+    values = load_checked(path, BAT_SCHEMA, data)
+    measured: Any = values["measured"]
+    if measured is not None:
+        values["measured"] = spec_from(MeasuredSpec, measured)
+    return spec_from(BatSpec, values, source=Source.of(path, data))

@@ -1,14 +1,21 @@
-"""Spec helpers shared by bat, ball and protocol files: header fields, pairs, file hashes."""
+"""Spec helpers shared by every input file: where a spec came from, header fields, pairs.
+
+Every loaded spec is a frozen dataclass whose fields are the file's validated values in SI,
+named as in the file, plus a :class:`Source`: the file's path, its SHA-256 and the parsed YAML
+with the line and column of every key, so that any later stage can point into the user's file
+(:meth:`Source.line`) without reading it again.
+"""
 
 from __future__ import annotations
 
 import hashlib
+from dataclasses import dataclass, fields
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
-from batcert.errors import Collector
-from batcert.specs.schema import Field, FieldError, Kind, text
-from batcert.specs.yamlio import LocatedList
+from batcert.errors import Collector, InputError, Problem
+from batcert.specs.schema import Field, FieldError, Kind, Schema, lookup, text
+from batcert.specs.yamlio import Located, LocatedList
 from batcert.units import DIMENSIONS, UnitError, parse_quantity
 
 HEADER_FIELDS = (
@@ -17,9 +24,66 @@ HEADER_FIELDS = (
     Field("version", text(), "Version of this file's content."),
 )
 
+T = TypeVar("T")
+
 
 def sha256_of(path: str | Path) -> str:
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+@dataclass(frozen=True)
+class Source:
+    """Where a loaded spec came from: its file, content hash and parsed YAML with positions."""
+
+    path: str
+    sha256: str
+    data: Located
+
+    @classmethod
+    def of(cls, path: str | Path, data: Located) -> Source:
+        return cls(str(path), sha256_of(path), data)
+
+    def line(self, *keys: str | int) -> int | None:
+        """1-based line of a nested key or list item, e.g. ``line("limit", "max")``."""
+        return lookup(self.data, *keys)[0]
+
+    def problem(self, field_: str, message: str) -> InputError:
+        """An :class:`InputError` at the dotted ``field_`` (``"measured.mass"``,
+        ``"rules[2].protocol"``) of this file."""
+        return InputError([Problem(self.path, self.line(*split_field(field_)), field_, message)])
+
+
+def split_field(dotted: str) -> list[str | int]:
+    """``"rules[2].protocol"`` -> ``["rules", 2, "protocol"]``."""
+    keys: list[str | int] = []
+    for part in dotted.split("."):
+        name, *indices = part.replace("]", "").split("[")
+        if name:
+            keys.append(name)
+        keys += [int(i) for i in indices]
+    return keys
+
+
+def spec_from(cls: type[T], values: dict[str, Any], **extra: Any) -> T:
+    """The spec dataclass ``cls`` from a schema's validated values (field names match)."""
+    names = {f.name for f in fields(cls)}  # type: ignore[arg-type]
+    return cls(**{k: v for k, v in values.items() if k in names}, **extra)
+
+
+def schema_matches(schema: Schema, cls: type, extra: tuple[str, ...] = ("source",)) -> bool:
+    """Whether a spec dataclass has exactly the schema's fields (plus ``extra``)."""
+    names = {f.name for f in fields(cls)} - set(extra)
+    return names == set(schema.names())
+
+
+def load_checked(path: str | Path, schema: Schema, data: Located) -> dict[str, Any]:
+    """Validate ``data`` against ``schema``; raise every problem of the file at once."""
+    from batcert.specs.schema import validate
+    errors = Collector(path)
+    values = validate(data, schema, errors)
+    errors.raise_if_any()
+    assert values is not None
+    return values
 
 
 def pairs(first: str, second: str, first_name: str, second_name: str, *,

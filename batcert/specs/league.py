@@ -1,11 +1,12 @@
 """League specification: the rules a bat must meet to be legal in a league, each with its source.
 
-A league file lists rules. Each rule has a ``kind`` from :data:`RULE_KINDS` (a registry: the kind
-says how its ``limit`` is read and which other fields it needs), the bats it ``applies_to`` (all,
+A league file lists rules. Each rule has a ``kind`` from
+:data:`batcert.analysis.league.RULE_KINDS` (the registry: the kind says how its ``limit`` is read,
+which other fields it needs and how it is evaluated), the bats it ``applies_to`` (all,
 wood or non-wood), a ``source`` and a ``confidence`` (H, M, L, D as in REFERENCE-DATA.md). A rule
 that batcert cannot evaluate yet is written with ``status: not-modelled`` and a ``reason``; the
 league report then lists it as not modelled instead of passing it. The evaluation itself lives in
-:mod:`batcert.league`.
+:mod:`batcert.analysis.league`.
 """
 
 from __future__ import annotations
@@ -14,45 +15,15 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from batcert.analysis.league import RULE_KINDS
 from batcert.errors import Collector
-from batcert.specs.common import sha256_of
+from batcert.specs.common import Source, spec_from
 from batcert.specs.schema import (Field, FieldError, Kind, Schema, choice, list_of, lookup, number,
                                   one_of, quantity, section, text, validate)
 from batcert.specs.yamlio import Located, LocatedList, load_yaml, where
 
 MATERIAL_CLASSES = ("wood", "metal", "composite")
 CONFIDENCE = ("H", "M", "L", "D")
-
-
-@dataclass(frozen=True)
-class RuleKind:
-    """How one kind of rule reads its limit: ``limit`` parses the value (None: no limit)."""
-
-    describe: str
-    limit: Kind | None
-    needs: tuple[str, ...] = ()  # other fields a modelled rule of this kind requires
-    unit: str = ""  # unit of value and limit in results: "m", "kg m^2", "in - oz", "" ...
-
-
-_LENGTH = quantity("length", positive=True)
-_PERFORMANCE_LIMIT = one_of(number(), quantity("speed"), describe="a number, or a speed for an "
-                            "exit-speed protocol")
-
-RULE_KINDS: dict[str, RuleKind] = {
-    "max-length": RuleKind("overall length at most `limit`", _LENGTH, unit="m"),
-    "max-drop": RuleKind("drop = length [in] - weight [oz] at most `limit` (a plain number; "
-                         "BBCOR's -3 rule is `limit: 3`)", number(), unit="in - oz"),
-    "max-barrel-diameter": RuleKind("largest outer diameter at most `limit`", _LENGTH, unit="m"),
-    "min-diameter": RuleKind("smallest outer diameter (the handle) at least `limit`", _LENGTH,
-                             unit="m"),
-    "construction": RuleKind("construction must be `required` (solid or hollow)", None,
-                             ("required",)),
-    "material": RuleKind("material must be one of `allowed` (library names or the classes "
-                         "wood, metal, composite)", None, ("allowed",)),
-    "performance": RuleKind("the protocol's aggregated metric at most `limit` + `tolerance`",
-                            _PERFORMANCE_LIMIT, ("protocol",)),
-    "other": RuleKind("any other requirement (only with status: not-modelled)", None),
-}
 
 
 def _raw() -> Kind:
@@ -168,24 +139,56 @@ LEAGUE_SCHEMA = Schema("league", (
 
 
 @dataclass(frozen=True)
-class LeagueSpec:
-    path: str
-    sha256: str
+class RuleSpec:
+    """One rule of a league file (lengths in m; ``limit`` parsed per kind)."""
+
     id: str
-    values: dict  # validated values; lengths in m; rules[i]["limit"] parsed per kind
+    title: str | None
+    kind: str  # a name of batcert.analysis.league.RULE_KINDS
+    limit: Any  # float (SI), or text for a not-modelled rule's unparsed limit, or None
+    tolerance: float
+    required: str | None
+    allowed: list[str] | None
+    protocol: str | None
+    applies_to: str  # all | wood | non-wood
+    applies_from_length: float | None  # [m]
+    applies_below_length: float | None  # [m]
+    status: str  # modelled | not-modelled
+    reason: str | None
+    source: str
+    confidence: str
+    note: str | None
+
+
+@dataclass(frozen=True)
+class LeagueSpec:
+    """A validated league file."""
+
+    source: Source
+    id: str
+    title: str
+    reference: str
+    version: str
+    description: str | None
+    notes: str | None
+    rules: tuple[RuleSpec, ...]
 
     @property
-    def rules(self) -> list[dict]:
-        return self.values["rules"]
+    def path(self) -> str:
+        return self.source.path
+
+    @property
+    def sha256(self) -> str:
+        return self.source.sha256
 
 
 def load_league(path: str | Path) -> LeagueSpec:
     """Read and validate a league file; raise InputError with every problem of the file."""
+    from batcert.specs.resolve import NotFound, resolve
     data = load_yaml(path)
     errors = Collector(path)
-    v = validate(data, LEAGUE_SCHEMA, errors)
-    from batcert.specs.resolve import NotFound, resolve
-    rules = (v or {}).get("rules") or []
+    values = validate(data, LEAGUE_SCHEMA, errors) or {}
+    rules = values.get("rules") or []
     ids = [r["id"] if r else None for r in rules]
     for i, r in enumerate(rules):
         if not r:
@@ -200,4 +203,5 @@ def load_league(path: str | Path) -> LeagueSpec:
                 errors.add(lookup(data, "rules", i, "protocol")[0], f"rules[{i}].protocol",
                            str(exc))
     errors.raise_if_any()
-    return LeagueSpec(str(path), sha256_of(path), v["id"], v)
+    values["rules"] = tuple(spec_from(RuleSpec, r) for r in rules)
+    return spec_from(LeagueSpec, values, source=Source.of(path, data))

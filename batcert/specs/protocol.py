@@ -1,18 +1,24 @@
-"""Protocol specification: conditions, impact-location rule, metric, aggregation, limit."""
+"""Protocol specification: conditions, impact-location rule, metric, aggregation, limit.
+
+The names a protocol may use for its metric, aggregate and impact rule are those of the runner's
+registries (:data:`batcert.runner.metrics.METRICS`, :data:`~batcert.runner.metrics.AGGREGATES`,
+:data:`batcert.runner.rules.IMPACT_RULES`), so adding one there makes it valid here.
+"""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
+from batcert.conventions import DEFAULT_PIVOT
 from batcert.errors import Collector
-from batcert.specs.common import sha256_of
-from batcert.specs.schema import (Field, Schema, choice, integer, list_of, lookup, number, one_of, quantity,
-                                  section, text, validate)
+from batcert.runner.metrics import AGGREGATES, METRICS
+from batcert.runner.rules import IMPACT_RULES
+from batcert.specs.common import Source, load_checked, spec_from
+from batcert.specs.schema import (Field, Schema, choice, integer, list_of, lookup, number, one_of,
+                                  quantity, section, text)
 from batcert.specs.yamlio import Located, load_yaml
-
-METRICS = ("exit-speed", "besr", "bpf", "bbcor", "collision-efficiency")
-RULES = ("cop", "sweet-spot", "max-metric", "fixed-from-tip")
 
 
 def _check_condition(v: dict, data: Located, errors: Collector, path: str) -> None:
@@ -77,8 +83,8 @@ def _check_location(v: dict, data: Located, errors: Collector, path: str) -> Non
 
 
 LOCATION_SCHEMA = Schema("impact-location rule", (
-    Field("rule", choice(*RULES), "cop: centre of percussion (Eq. 4); sweet-spot: maximum exit "
-          "speed; max-metric: maximum of the metric; fixed-from-tip.", required=True),
+    Field("rule", choice(*IMPACT_RULES), "; ".join(f"{r.name}: {r.doc}" for r in
+                                                    IMPACT_RULES.values()) + ".", required=True),
     Field("window", list_of(quantity("length", minimum=0.0), min_items=2,
                             describe="[nearest, farthest] distance from the tip"),
           "Search window as distances from the tip.", default=[0.03, 0.30]),
@@ -138,7 +144,7 @@ PROTOCOL_SCHEMA = Schema("protocol", (
     Field("description", text(), "What the protocol measures."),
     Field("notes", text(), "Which details are assumed rather than taken from the reference."),
     Field("pivot", quantity("length", minimum=0.0), "Pivot distance from the knob end.",
-          default=0.1524),
+          default=DEFAULT_PIVOT),
     Field("ball", text(), "Ball: shipped name (e.g. collegiate-baseball) or path relative to "
           "this file.", required=True),
     Field("support", choice("pinned", "free"), "Bat pinned at the pivot or free.",
@@ -146,29 +152,110 @@ PROTOCOL_SCHEMA = Schema("protocol", (
     Field("conditions", list_of(section(CONDITION_SCHEMA), min_items=1, describe="list of "
           "conditions"), "Test conditions (set-ups and speeds).", required=True),
     Field("impact_location", section(LOCATION_SCHEMA), "Where the ball strikes.", required=True),
-    Field("metric", choice(*METRICS), "Performance metric.", required=True),
-    Field("aggregate", choice("mean", "min", "max"), "How conditions combine.", default="mean"),
+    Field("metric", choice(*METRICS), "Performance metric: " + "; ".join(
+        f"{m.name}: {m.doc}" for m in METRICS.values()), required=True),
+    Field("aggregate", choice(*AGGREGATES), "How conditions combine: " + "; ".join(
+        f"{a.name}: {a.doc}" for a in AGGREGATES.values()), default="mean"),
     Field("limit", section(LIMIT_SCHEMA), "Pass/fail limit (omit for no verdict)."),
 ), checks=(_check_limit,))
 
 
 @dataclass(frozen=True)
+class ConditionSpec:
+    """One test set-up of a protocol (SI; None where not given)."""
+
+    name: str
+    description: str | None
+    pitch_speed: float | None  # toward the bat [m/s], >= 0
+    bat_angular_speed: float | None  # [rad/s]
+    bat_speed: float | None  # linear, at bat_speed_from_tip [m/s]
+    bat_speed_from_tip: float | None  # [m]
+    relative_speed: float | None  # matched relative normal speed [m/s]
+    stationary: str | None  # bat | ball, with relative_speed
+
+
+@dataclass(frozen=True)
+class LocationSpec:
+    """The impact-location rule and its search window."""
+
+    rule: str  # a name of batcert.runner.rules.IMPACT_RULES
+    window: tuple[float, float]  # [nearest, farthest] distance from the tip [m]
+    sweep_points: int
+    resolution: float  # [m]
+    from_tip: float | None  # fixed-from-tip distance [m]
+
+
+@dataclass(frozen=True)
+class LimitSpec:
+    """The pass/fail limit of the aggregated metric."""
+
+    max: float  # largest passing value (m/s for exit speed)
+    tolerance: float  # added to max before the verdict
+    source: str | None
+
+
+@dataclass(frozen=True)
 class ProtocolSpec:
-    path: str
-    sha256: str
+    """A validated protocol (a file, or an inline entry of a study file)."""
+
+    source: Source
     id: str
-    values: dict
+    title: str
+    reference: str
+    version: str
+    description: str | None
+    notes: str | None
+    pivot: float  # from the knob [m]
+    ball: str  # shipped name or path relative to the file
+    support: str  # pinned | free
+    conditions: tuple[ConditionSpec, ...]
+    impact_location: LocationSpec
+    metric: str  # a name of batcert.runner.metrics.METRICS
+    aggregate: str  # a name of batcert.runner.metrics.AGGREGATES
+    limit: LimitSpec | None
+    origin: tuple[str | int, ...] = ()  # keys of an inline protocol inside its study file
+
+    @property
+    def path(self) -> str:
+        return self.source.path
+
+    @property
+    def sha256(self) -> str:
+        return self.source.sha256
+
+    def line(self, *keys: str | int) -> int | None:
+        """Line of one of this protocol's keys in its file."""
+        return self.source.line(*self.origin, *keys)
+
+
+def protocol_from_values(values: dict[str, Any], source: Source,
+                         origin: tuple[str | int, ...] = ()) -> ProtocolSpec:
+    """A :class:`ProtocolSpec` from the validated values of :data:`PROTOCOL_SCHEMA`."""
+    v = dict(values)
+    v["conditions"] = tuple(spec_from(ConditionSpec, c) for c in v["conditions"])
+    loc = dict(v["impact_location"])
+    loc["window"] = tuple(loc["window"])
+    v["impact_location"] = spec_from(LocationSpec, loc)
+    v["limit"] = spec_from(LimitSpec, v["limit"]) if v["limit"] else None
+    return spec_from(ProtocolSpec, v, source=source, origin=origin)
+
+
+def duplicate_condition_names(values: dict[str, Any], data: Located, errors: Collector,
+                              path: str = "") -> None:
+    """Condition names must be unique within a protocol (they key the results)."""
+    names = [c["name"] for c in values["conditions"]]
+    prefix = f"{path}." if path else ""
+    for i, n in enumerate(names):
+        if n in names[:i]:
+            errors.add(lookup(data, "conditions", i, "name")[0], f"{prefix}conditions[{i}].name",
+                       f"duplicate condition name {n!r}")
 
 
 def load_protocol(path: str | Path) -> ProtocolSpec:
+    """Read and validate a protocol file; raise InputError with every problem of the file."""
     data = load_yaml(path)
+    values = load_checked(path, PROTOCOL_SCHEMA, data)
     errors = Collector(path)
-    v = validate(data, PROTOCOL_SCHEMA, errors)
-    if not errors.problems:
-        names = [c["name"] for c in v["conditions"]]
-        for i, n in enumerate(names):
-            if n in names[:i]:
-                errors.add(lookup(data, "conditions", i, "name")[0], f"conditions[{i}].name",
-                           f"duplicate condition name {n!r}")
+    duplicate_condition_names(values, data, errors)
     errors.raise_if_any()
-    return ProtocolSpec(str(path), sha256_of(path), v["id"], v)
+    return protocol_from_values(values, Source.of(path, data))

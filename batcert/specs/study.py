@@ -1,44 +1,26 @@
 """Study specification: a named set of protocols to compare bats under, and the claims to test.
 
-A study (e.g. ``protocols/studies/smith2001.yaml``) lists protocols by shipped id, by path
-relative to the study file, or inline (a mapping with the protocol fields). It may name default
-bats (the first is the reference of the relative performance P) and the published ``claims`` to
-test against the model's results: each claim names a check from :data:`CLAIM_CHECKS` (evaluated in
-:mod:`batcert.compare`) and the protocols it concerns. The comparison report states, for each
-claim, whether the model supports it, and with which numbers; nothing is fitted to make it so.
-"""
+A study (e.g. ``protocols/studies/smith2001.yaml``) lists protocols by shipped id, by path relative
+to the study file, or inline (a mapping with the protocol fields). It may name default bats (the
+first is the reference of the relative performance P) and the published ``claims`` to test against
+the model's results: each claim names a check from :data:`batcert.analysis.claims.CLAIM_CHECKS` (the
+registry of checks, evaluated there) and the protocols it concerns. The comparison report states,
+for each claim, whether the model supports it, and with which numbers; nothing is fitted to make it
+so."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
 
+from batcert.analysis.claims import CLAIM_CHECKS
 from batcert.errors import Collector, InputError
-from batcert.specs.common import sha256_of
-from batcert.specs.protocol import PROTOCOL_SCHEMA, ProtocolSpec, load_protocol
+from batcert.specs.common import Source, spec_from
+from batcert.specs.protocol import (PROTOCOL_SCHEMA, ProtocolSpec, duplicate_condition_names,
+                                    load_protocol, protocol_from_values)
 from batcert.specs.schema import (Field, FieldError, Kind, Schema, choice, list_of, lookup, number,
                                   quantity, section, text, validate)
 from batcert.specs.yamlio import Located, load_yaml
-
-CLAIM_CHECKS = {
-    "sign-disagreement": "P of the compared bat takes both signs (beyond `tolerance`) across the "
-                         "protocols' conditions: the methods disagree on which bat is better.",
-    "consistent-across-conditions": "In each protocol P has one sign in every condition, beyond "
-                                    "`tolerance`, and its range across conditions is smaller than "
-                                    "the range over `compare_with` (when given).",
-    "advantage": "`expected: shown`: the mean P of every compared bat exceeds `tolerance` in "
-                 "every protocol; `not-shown`: in none of them.",
-    "lower-than": "The mean P under the first protocol is below the mean P under the second by "
-                  "more than `tolerance` (a metric that ignores MOI underrates a light bat).",
-    "cop-not-sweet-spot": "For every bat and condition the sweet spot lies more than "
-                          "`location_tolerance` from the centre of percussion.",
-    "cop-offset-differs": "The mean sweet-spot-minus-COP offset differs between the bats by more "
-                          "than `location_tolerance`.",
-    "sweet-spot-moves-less-than-rigid": "Across conditions with fixed speeds the sweet spot "
-                                        "moves less than `factor` times the movement of the rigid "
-                                        "sweet spot (Smith 2001 Eq. 7).",
-}
-
 
 def _protocol_entry() -> Kind:
     inline = section(PROTOCOL_SCHEMA)
@@ -57,7 +39,8 @@ CLAIM_SCHEMA = Schema("study claim", (
     Field("id", text(), "Short claim name.", required=True),
     Field("statement", text(), "The study's claim in words.", required=True),
     Field("source", text(), "Where the study makes it."),
-    Field("check", choice(*CLAIM_CHECKS), "How the model's results test it.", required=True),
+    Field("check", choice(*CLAIM_CHECKS), "How the model's results test it (the claim checks "
+          "table below).", required=True),
     Field("protocols", list_of(text(), min_items=1, describe="list of protocol ids"),
           "Protocol ids (of this study) the check reads.", required=True),
     Field("compare_with", list_of(text(), min_items=1, describe="list of protocol ids"),
@@ -90,28 +73,48 @@ STUDY_SCHEMA = Schema("study", (
 
 
 @dataclass(frozen=True)
-class StudySpec:
-    path: str
-    sha256: str
+class ClaimSpec:
+    """One published claim of a study and how the model's results test it."""
+
     id: str
-    values: dict
-    protocols: list[ProtocolSpec]  # resolved and validated, in study order
-    bats: list[Path]  # resolved default bats (may be empty)
+    statement: str
+    source: str | None
+    check: str  # a name of batcert.analysis.claims.CLAIM_CHECKS
+    protocols: list[str]
+    compare_with: list[str] | None
+    expected: str  # shown | not-shown
+    tolerance: float  # dead band on P [-]
+    location_tolerance: float  # dead band on positions [m]
+    factor: float  # sweet-spot-moves-less-than-rigid: largest accepted ratio [-]
+
+
+@dataclass(frozen=True)
+class StudySpec:
+    """A validated study: its protocols loaded, its default bats resolved, its claims."""
+
+    source: Source
+    id: str
+    title: str
+    reference: str
+    version: str
+    description: str | None
+    notes: str | None
+    protocols: tuple[ProtocolSpec, ...]  # resolved and validated, in study order
+    bats: tuple[Path, ...]  # resolved default bats (may be empty)
+    claims: tuple[ClaimSpec, ...]
 
     @property
-    def claims(self) -> list[dict]:
-        return self.values["claims"] or []
+    def path(self) -> str:
+        return self.source.path
+
+    @property
+    def sha256(self) -> str:
+        return self.source.sha256
 
 
-def _inline_protocol(entry: dict, study: Path, sha: str, data: Located, i: int,
-                     errors: Collector) -> ProtocolSpec:
-    v = entry["inline"]
-    names = [c["name"] for c in v["conditions"]]
-    for j, n in enumerate(names):
-        if n in names[:j]:
-            errors.add(lookup(data, "protocols", i, "conditions", j, "name")[0],
-                       f"protocols[{i}].conditions[{j}].name", f"duplicate condition name {n!r}")
-    return ProtocolSpec(str(study), sha, v["id"], v)
+def _inline_protocol(entry: dict, source: Source, i: int, errors: Collector) -> ProtocolSpec:
+    duplicate_condition_names(entry["inline"], source.data, errors, f"protocols[{i}]")
+    return protocol_from_values(entry["inline"], source, ("protocols", i))
 
 
 def load_study(path: str | Path) -> StudySpec:
@@ -127,12 +130,13 @@ def load_study(path: str | Path) -> StudySpec:
     errors = Collector(path)
     v = validate(data, STUDY_SCHEMA, errors)
     errors.raise_if_any()
-    sha = sha256_of(path)
+    assert v is not None
+    source = Source.of(path, data)
     protocols: list[ProtocolSpec] = []
     nested: list[InputError] = []
     for i, entry in enumerate(v["protocols"]):
         if isinstance(entry, dict):
-            protocols.append(_inline_protocol(entry, path, sha, data, i, errors))
+            protocols.append(_inline_protocol(entry, source, i, errors))
             ball_of, rel = entry["inline"]["ball"], path
         else:
             try:
@@ -145,7 +149,7 @@ def load_study(path: str | Path) -> StudySpec:
             except InputError as exc:
                 nested.append(exc)
                 continue
-            ball_of, rel = protocols[-1].values["ball"], p
+            ball_of, rel = protocols[-1].ball, p
         try:
             resolve("ball", ball_of, relative_to=rel)
         except NotFound as exc:
@@ -175,4 +179,6 @@ def load_study(path: str | Path) -> StudySpec:
     problems = list(errors.problems) + [p for e in nested for p in e.problems]
     if problems:
         raise InputError(problems)
-    return StudySpec(str(path), sha, v["id"], v, protocols, bats)
+    claims = tuple(spec_from(ClaimSpec, c) for c in v["claims"] or [])
+    return spec_from(StudySpec, {**v, "protocols": tuple(protocols), "bats": tuple(bats),
+                                 "claims": claims}, source=source)

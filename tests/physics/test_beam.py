@@ -1,8 +1,7 @@
-"""Unit tests of the Timoshenko beam modes (batcert.physics.beam)."""
+"""The Timoshenko beam element (batcert.physics.beam): shape functions and stiffness."""
 
 from __future__ import annotations
 
-import dataclasses
 import sys
 from pathlib import Path
 
@@ -37,7 +36,6 @@ def full_vectors(modes):
 
 
 # --- the element ------------------------------------------------------------------------------
-
 def test_shape_functions_reproduce_rigid_motion_and_constant_shear():
     xi = np.linspace(0.0, 1.0, 7)
     L, phi = np.array([0.01, 0.02]), np.array([0.3, 4.0])
@@ -65,152 +63,3 @@ def test_closed_form_stiffness_equals_energy_integral():
 
 
 # --- frequencies against closed forms -----------------------------------------------------------
-
-def test_uniform_free_free_euler_bernoulli_limit():
-    # Very stiff in shear and no rotary inertia: the Euler-Bernoulli free-free beam,
-    # f_n = (beta_n L)^2 sqrt(EI / (mu L^4)) / (2 pi), beta L = 4.7300, 7.8532, 10.9956
-    # (Blevins, Formulas for Natural Frequency and Mode Shape, Table 8-1). 0.5 % as asked;
-    # with 84 cubic elements the discretisation error is far smaller.
-    bat = uniform_bat()
-    bat = dataclasses.replace(bat, shear_stiffness=bat.shear_stiffness * 1e9,
-                              rotary_inertia=bat.rotary_inertia * 1e-9)
-    f = beam.compute_modes(bat, "free", PIVOT, n_modes=3).frequencies_hz
-    ei, mu, L = bat.bending_stiffness[0], bat.linear_density[0], bat.length
-    exact = np.array([4.7300408, 7.8532046, 10.9956078]) ** 2 * np.sqrt(ei / (mu * L**4)) / (2 * np.pi)
-    np.testing.assert_allclose(f, exact, rtol=5e-3)
-
-
-def test_shear_and_rotary_inertia_lower_the_frequencies():
-    bat = uniform_bat()
-    eb = dataclasses.replace(bat, shear_stiffness=np.full(84, np.inf),
-                             rotary_inertia=np.zeros(84))
-    f_t = beam.compute_modes(bat, "free", PIVOT, 5).frequencies_hz
-    f_eb = beam.compute_modes(eb, "free", PIVOT, 5).frequencies_hz
-    assert np.all(f_t < f_eb)
-    assert np.all(np.diff(f_t / f_eb) < 0)  # the effect grows with mode number
-
-
-def test_stiff_limit_scales_with_sqrt_of_stiffness(r161):
-    # Scaling every stiffness (E and G) by 1000 scales each omega by sqrt(1000), exactly.
-    stiff = dataclasses.replace(r161, bending_stiffness=r161.bending_stiffness * 1e3,
-                                shear_stiffness=r161.shear_stiffness * 1e3)
-    f0 = beam.compute_modes(r161, "free", PIVOT, 8).frequencies_hz
-    f1 = beam.compute_modes(stiff, "free", PIVOT, 8).frequencies_hz
-    np.testing.assert_allclose(f1 / f0, np.sqrt(1e3), rtol=1e-7)
-    # E alone: shear deformation then limits the rise, more so for higher modes
-    e_only = dataclasses.replace(r161, bending_stiffness=r161.bending_stiffness * 1e3)
-    ratio = beam.compute_modes(e_only, "free", PIVOT, 8).frequencies_hz / f0
-    assert np.all(ratio < np.sqrt(1e3)) and np.all(np.diff(ratio) < 0)
-
-
-# --- normalisation, supports, convergence --------------------------------------------------------
-
-def test_mass_normalisation_and_rigid_modes():
-    masses = ((0.0, 0.03), (0.4037, 0.02), (0.84, 0.05))  # knob, an off-slice-edge mass, cap
-    bat = uniform_bat(point_masses=masses)
-    modes = beam.compute_modes(bat, "free", PIVOT, 10)
-    fe = beam.assemble(bat, modes.z)
-    phi = full_vectors(modes)
-    np.testing.assert_allclose(phi.T @ (fe.mass @ phi), np.eye(modes.omega.size), atol=1e-9)
-    np.testing.assert_allclose(modes.shapes[0], 1.0 / np.sqrt(bat.mass), rtol=1e-12)
-    assert np.all(modes.omega[:2] == 0) and modes.n_rigid == 2
-    # the rotation mode turns about the centre of gravity (BatModel.balance_point)
-    z_zero = np.interp(0.0, modes.shapes[1], modes.z)
-    assert z_zero == pytest.approx(bat.balance_point, abs=1e-12)
-    # and its moment of inertia is the bat's: phi_rot' = 1 / sqrt(I_cg)
-    i_cg = bat.moi_about(bat.balance_point)
-    np.testing.assert_allclose(modes.rotations[1], 1.0 / np.sqrt(i_cg), rtol=1e-12)
-    np.testing.assert_allclose(phi[:, 2:].T @ (fe.stiffness @ phi[:, 2:]),
-                               np.diag(modes.omega[2:] ** 2), rtol=1e-8, atol=1e-3)
-
-
-def test_pinned_support_holds_the_pivot(r161):
-    modes = beam.compute_modes(r161, "pinned", PIVOT, 12)
-    assert PIVOT in modes.z  # an exact node, not snapped to the 15 cm slice edge
-    assert modes.n_rigid == 1 and modes.omega[0] == 0
-    np.testing.assert_array_equal(modes.at(PIVOT), 0.0)
-    np.testing.assert_allclose(modes.rotations[0], 1.0 / np.sqrt(r161.moi_about(PIVOT)),
-                               rtol=1e-12)
-    for j in range(1, 13):
-        assert np.any(np.isclose(beam.mode_nodes(modes, j), PIVOT, atol=1e-12))
-
-
-def test_free_and_pinned_fundamental_nearly_agree_when_pinned_near_a_node(r161):
-    # R161 mode-1 node is near 17 cm; pinning at 15.24 cm hardly changes mode 1 (Nathan 2000).
-    f_free = beam.compute_modes(r161, "free", PIVOT, 3).frequencies_hz[0]
-    f_pin = beam.compute_modes(r161, "pinned", PIVOT, 3).frequencies_hz[0]
-    assert f_pin == pytest.approx(f_free, rel=0.02)
-
-
-@pytest.mark.parametrize("support", ["free", "pinned"])
-def test_convergence_under_refinement(r161, support):
-    # What we measure: the first five bending frequencies and the mode-1..3 nodes of the R161 with
-    # 1, 2 and 4 elements per 1 cm slice. The element is conforming and the meshes are nested, so
-    # the frequencies fall monotonically; refine=2 changes them by < 0.1 % (measured 0.05 % for
-    # mode 5) and the nodes by < 0.5 mm. refine=4 uses the sparse eigensolver, refine 1-2 dense.
-    runs = [beam.compute_modes(r161, support, PIVOT, 5, refine=r) for r in (1, 2, 4)]
-    f = np.array([m.frequencies_hz for m in runs])
-    assert np.all(np.diff(f, axis=0) <= 1e-9 * f[0])
-    np.testing.assert_allclose(f[1], f[0], rtol=1e-3)
-    np.testing.assert_allclose(f[2], f[1], rtol=3e-4)
-    for j in (1, 2, 3):
-        np.testing.assert_allclose(beam.mode_nodes(runs[1], j), beam.mode_nodes(runs[0], j),
-                                   atol=5e-4)
-
-
-def test_dense_and_sparse_eigensolvers_agree(r161, monkeypatch):
-    dense = beam.compute_modes(r161, "free", PIVOT, 10, refine=3)
-    monkeypatch.setattr(beam, "_DENSE_MAX", 0)
-    sparse = beam.compute_modes(r161, "free", PIVOT, 10, refine=3)
-    np.testing.assert_allclose(sparse.omega[2:], dense.omega[2:], rtol=1e-9)
-    np.testing.assert_allclose(sparse.shapes, dense.shapes, atol=1e-7)
-
-
-def test_mode_nodes_count(r161):
-    modes = beam.compute_modes(r161, "free", PIVOT, 6)
-    for j in range(1, 7):
-        nodes = beam.mode_nodes(modes, j)
-        assert nodes.size == j + 1 and np.all(np.diff(nodes) > 0)
-    with pytest.raises(ValueError):
-        beam.mode_nodes(modes, 0)
-
-
-# --- residual compliance -------------------------------------------------------------------------
-
-@pytest.mark.parametrize("support", ["free", "pinned"])
-def test_residual_compliance_is_the_truncated_modal_sum(r161, support):
-    z = np.array([0.30, 0.5, 0.6543, 0.70, 0.80, 0.835])
-    kept = beam.compute_modes(r161, support, PIVOT, 18)
-    every = beam.compute_modes(r161, support, PIVOT, 10_000)  # the whole FE spectrum
-    n = every.n_rigid + 18
-    expected = (every.at(z)[:, n:] ** 2 / every.omega[n:] ** 2).sum(axis=1)
-    np.testing.assert_allclose(beam.residual_compliance(r161, kept, z), expected, rtol=1e-5)
-    # all modes kept: nothing left but round-off (about 1e-6 of the 18-mode residual)
-    np.testing.assert_allclose(beam.residual_compliance(r161, every, z), 0.0,
-                               atol=1e-5 * expected.min())
-    fewer = beam.residual_compliance(r161, beam.compute_modes(r161, support, PIVOT, 4), z)
-    assert np.all(fewer > beam.residual_compliance(r161, kept, z))
-
-
-# --- cache and input checks ----------------------------------------------------------------------
-
-def test_cache_keys_on_content(r161):
-    beam.clear_mode_cache()
-    a = beam.cached_modes(r161, "free", PIVOT, 12)
-    copy = dataclasses.replace(r161, bending_stiffness=r161.bending_stiffness.copy(), name="x")
-    assert beam.cached_modes(copy, "free", PIVOT, 12) is a
-    assert not a.shapes.flags.writeable
-    stiffer = dataclasses.replace(r161, bending_stiffness=r161.bending_stiffness * 1.01)
-    assert beam.cached_modes(stiffer, "free", PIVOT, 12) is not a
-    assert beam.cached_modes(r161, "pinned", PIVOT, 12) is not a
-    assert beam.cached_modes(r161, "free", PIVOT, 12, refine=2) is not a
-    np.testing.assert_array_equal(a.omega, beam.compute_modes(r161, "free", PIVOT, 12).omega)
-
-
-def test_bad_arguments(r161):
-    with pytest.raises(ValueError, match="support"):
-        beam.compute_modes(r161, "clamped", PIVOT)
-    with pytest.raises(ValueError, match="pivot"):
-        beam.compute_modes(r161, "pinned", 1.2)
-    with pytest.raises(ValueError, match="refine"):
-        beam.compute_modes(r161, "free", PIVOT, refine=0)

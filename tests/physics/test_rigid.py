@@ -13,8 +13,8 @@ import pytest
 
 from batcert.physics import rigid
 from batcert.physics.ball import BallModel
-from batcert.physics.engine import ImpactBatch, get_engine
-from batcert.physics.reconcile import build_geometry
+from batcert.engines import ImpactBatch, get_engine
+from batcert.model.geometry import build_geometry
 from batcert.specs.materials import LIBRARY
 
 N = 2000

@@ -12,7 +12,7 @@ from __future__ import annotations
 import hashlib
 import math
 
-from batcert.results import ConditionResult, InputFile, MassProperties, RunResult, Sweep
+from batcert.results.run import ConditionResult, InputFile, MassProperties, RunResult, Sweep
 
 BALL_MASS = 0.145  # [kg]
 BALL_COR = 0.50  # rigid-wall COR at 60 m/s [-]

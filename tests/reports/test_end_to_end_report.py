@@ -11,10 +11,11 @@ from pathlib import Path
 
 import pytest
 
-from batcert.jobs import load_bat_any, load_protocol_any, run
-from batcert.reports import write_reports
+from batcert.commands.inputs import load_bat_any, load_protocol_any
+from batcert.commands.run import run
+from batcert.reports.write import write_reports
 from batcert.reports.markdown import md_text
-from batcert.results import RunResult
+from batcert.results.run import RunResult
 
 REPO = Path(__file__).resolve().parents[2]
 NS = "{http://www.w3.org/2000/svg}"

@@ -10,13 +10,18 @@ from html.parser import HTMLParser
 import pytest
 from sample import sample_result
 
-from batcert.reports import render
-from batcert.reports.html import render_html
+from batcert.reports.write import render
+from batcert.reports.html import run_html as render_html
 
 VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "param",
         "source", "track", "wbr"}
 SVG_NS = "{http://www.w3.org/2000/svg}"
-VALUE = f"{sample_result().value:.3f}"  # the mean BPF of the sample, as the report rounds it
+VALUE = f"{sample_result().value:.4f}"  # the mean BPF of the sample, as the report rounds it
+
+
+def signed(v: float) -> str:
+    """A signed metric as reports show it: 4 decimals, typographic minus."""
+    return f"{v:+.4f}".replace("-", "\u2212")
 
 
 class TagChecker(HTMLParser):
@@ -147,9 +152,9 @@ def test_pass_verdict(passing):
     assert '<div class="verdict verdict-pass" role="status">PASS</div>' in passing
     assert "FAIL" not in text
     assert unescape(re.search(r"<title>(.*?)</title>", passing).group(1)).startswith("PASS")
-    margin = f"{sample_result(limit=1.05).margin:+.3f}"
-    assert f"BPF {VALUE} \u2264 limit 1.050 + tolerance 0.005; margin {margin}." in text
-    for label, value in [("BPF", VALUE), ("Limit", "1.050"), ("Tolerance", "0.005"),
+    margin = signed(sample_result(limit=1.05).margin)
+    assert f"BPF {VALUE} \u2264 limit 1.0500 + tolerance 0.0050; margin {margin}." in text
+    for label, value in [("BPF", VALUE), ("Limit", "1.0500"), ("Tolerance", "0.0050"),
                          ("Margin", margin)]:
         assert re.search(rf"<dt>{label}</dt><dd><span class=\"si\">{re.escape(value)}</span>",
                          passing), label
@@ -161,9 +166,9 @@ def test_fail_verdict(failing):
     assert "PASS" not in text
     result = sample_result(limit=0.95)
     assert result.verdict == "fail"
-    assert f"> limit 0.950 + tolerance 0.005; margin {result.margin:+.3f}." in text
+    assert f"> limit 0.9500 + tolerance 0.0050; margin {signed(result.margin)}." in text
     assert result.margin < 0
-    assert f"<dt>Margin</dt><dd><span class=\"si\">{result.margin:+.3f}</span>" in failing
+    assert f"<dt>Margin</dt><dd><span class=\"si\">{signed(result.margin)}</span>" in failing
 
 
 def test_no_limit(no_limit):
@@ -225,7 +230,7 @@ def test_row_per_condition(passing):
     assert f"{c.exit_speed / 0.44704:.1f} mph" in speeds[1]
     assert f"{c.impact_location:.3f} m from pivot" in speeds[1]
     perf = table_rows(passing, "Performance measures")
-    assert f"{c.bpf:.3f}" in perf[1] and f"{c.besr:.3f}" in perf[1]
+    assert f"{c.bpf:.4f}" in perf[1] and f"{c.besr:.4f}" in perf[1]
     # the locations table (no caption) has a row per condition too
     section = passing.split("<h2>Centre of percussion and sweet spot</h2>")[1].split("</table>")[0]
     assert section.count('<tr><th scope="row">') == len(names)

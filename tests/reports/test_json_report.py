@@ -8,8 +8,8 @@ import math
 import pytest
 from sample import sample_result
 
-from batcert.reports import render
-from batcert.results import ConditionResult, RunResult, Sweep
+from batcert.reports.write import render
+from batcert.results.run import ConditionResult, RunResult, Sweep
 
 TOP_KEYS = {"protocol", "metric", "value", "limit", "verdict", "conditions"}
 CONDITION_KEYS = {"name", "pitch_speed", "bat_angular_speed", "impact_location", "exit_speed",

@@ -7,10 +7,16 @@ import re
 import pytest
 from sample import sample_result
 
-from batcert.reports import render
-from batcert.reports.markdown import md_cell, md_table, md_text, render_markdown
+from batcert.reports.write import render
+from batcert.reports.markdown import md_cell, md_table, md_text
+from batcert.reports.markdown import run_markdown as render_markdown
 
-VALUE = f"{sample_result().value:.3f}"  # the mean BPF of the sample, as the report rounds it
+VALUE = f"{sample_result().value:.4f}"  # the mean BPF of the sample, as the report rounds it
+
+
+def signed(v: float) -> str:
+    """A signed metric as reports show it: 4 decimals, typographic minus."""
+    return f"{v:+.4f}".replace("-", "\u2212")
 
 
 def cells(line: str) -> list[str]:
@@ -43,16 +49,16 @@ def md() -> str:
 def test_title_and_verdict_pass(md):
     assert md.startswith("# Bat certification report: Ash 34 in (Smith 2001)\n")
     margin = sample_result(limit=1.05).margin
-    assert f"**Verdict: PASS** \u2014 BPF {VALUE} \u2264 limit 1.050 + tolerance 0.005; " \
-           f"margin {margin:+.3f}." in md
+    assert f"**Verdict: PASS** \u2014 BPF {VALUE} \u2264 limit 1.0500 + tolerance 0.0050; " \
+           f"margin {signed(margin)}." in md
 
 
 def test_verdict_fail():
     result = sample_result(limit=0.95)
     md = render_markdown(result)
     # ">" is escaped so that it cannot start HTML; it renders as ">"
-    assert f"**Verdict: FAIL** \u2014 BPF {VALUE} \\> limit 0.950 + tolerance 0.005; " \
-           f"margin {result.margin:+.3f}." in md
+    assert f"**Verdict: FAIL** \u2014 BPF {VALUE} \\> limit 0.9500 + tolerance 0.0050; " \
+           f"margin {signed(result.margin)}." in md
     assert "PASS" not in md
 
 
@@ -95,7 +101,7 @@ def test_row_per_condition(md):
     assert headers[-1] == "Metric: BPF"
     assert [r[0] for r in rows] == [c.name for c in result.conditions]
     for row, c in zip(rows, result.conditions, strict=True):
-        assert row[3] == f"{c.bpf:.3f}" and row[-1] == f"{c.metric_value:.3f}"
+        assert row[3] == f"{c.bpf:.4f}" and row[-1] == f"{c.metric_value:.4f}"
 
     headers, rows = table_after(md, "| Condition | Centre of percussion |")
     assert len(rows) == len(result.conditions)
@@ -150,7 +156,7 @@ def test_helpers():
 
 
 def test_md_table_alignment():
-    from batcert.reports import Table
+    from batcert.reports.table import Table
     text = md_table(Table(["A", "B"], [["x", "1"]], numeric=[False, True]))
     assert text.splitlines() == ["| A | B |", "|:---|---:|", "| x | 1 |"]
 

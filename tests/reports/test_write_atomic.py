@@ -9,8 +9,11 @@ from pathlib import Path
 import pytest
 from sample import sample_result
 
-from batcert.reports import FORMATS, render, write
-from batcert.reports.write import atomic_write_text, default_stem, write_reports
+from batcert.reports import html, markdown, write
+from batcert.reports.write import SUFFIXES as FORMATS
+from batcert.reports.write import atomic_write_text, render, write_reports
+from batcert.reports.write import run_stem as default_stem
+from batcert.results.run import RunResult
 
 STEM = "ash-34-in-smith-2001--proposed"
 
@@ -32,7 +35,11 @@ def break_renderer(monkeypatch: pytest.MonkeyPatch, fmt: str) -> None:
     def boom(result):
         raise RuntimeError(f"{fmt} renderer failed")
 
-    monkeypatch.setitem(FORMATS, fmt, (FORMATS[fmt][0], boom))
+    if fmt == "json":
+        monkeypatch.setattr(RunResult, "to_json", boom)
+    else:
+        module, name = {"md": (markdown, "run_markdown"), "html": (html, "run_html")}[fmt]
+        monkeypatch.setattr(module, name, boom)
 
 
 def test_default_stem_and_paths(result, tmp_path):
@@ -46,7 +53,7 @@ def test_default_stem_and_paths(result, tmp_path):
 
 @pytest.mark.parametrize("broken", ["md", "html", "json"])
 def test_renderer_error_writes_nothing(result, tmp_path, monkeypatch, broken):
-    existing = {fmt: (tmp_path / f"{STEM}{FORMATS[fmt][0]}") for fmt in FORMATS}
+    existing = {fmt: (tmp_path / f"{STEM}{FORMATS[fmt]}") for fmt in FORMATS}
     old = {fmt: f"old {fmt} report \u2713\n".encode() + bytes(range(256)) for fmt in FORMATS}
     for fmt, path in existing.items():
         path.write_bytes(old[fmt])

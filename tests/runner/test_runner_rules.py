@@ -10,10 +10,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from batcert import jobs
+from batcert.commands.inputs import load_bat_any, load_protocol_any
+from batcert.commands.run import run as run_bat
+from batcert.engines import ImpactBatch, get_engine
 from batcert.physics import rigid
-from batcert.physics.engine import ImpactBatch, get_engine
-from batcert.results import RunResult
+from batcert.results.run import RunResult
 from batcert.runner.conditions import conditions_from_spec
 from batcert.runner.runner import ProtocolError, run_protocol
 
@@ -26,7 +27,7 @@ MPH = 0.44704  # [m/s]
 def ash():
     """Smith 2001 ash bat: 906 g, CG 0.429 m and MOI 0.209 kg m^2 about a pivot 150 mm from the
     knob, length 0.860 m."""
-    return jobs.load_bat_any(str(REPO / "bats" / "ash-34.yaml"))
+    return load_bat_any(str(REPO / "bats" / "ash-34.yaml")).built
 
 
 @pytest.fixture
@@ -36,7 +37,7 @@ def protocol(tmp_path):
         path = tmp_path / f"{name}.yaml"
         path.write_text(f"id: {name}\ntitle: test\nreference: test\nversion: '1'\nball: {ball}\n"
                         + textwrap.dedent(body), encoding="utf-8")
-        return jobs.load_protocol_any(str(path))
+        return load_protocol_any(str(path))
     return make
 
 
@@ -47,18 +48,18 @@ def run(bat, inputs) -> RunResult:
 
 def dense_exit_speed(bat, inputs, cond_index, r):
     """Exit speed over impact locations ``r`` [m from pivot] for one condition (rigid engine)."""
-    p = inputs.protocol.values
-    cond = conditions_from_spec(p["conditions"], bat.model.length, p["pivot"])[cond_index]
+    p = inputs.protocol
+    cond = conditions_from_spec(p.conditions, bat.model.length, p.pivot)[cond_index]
     vp, w1 = cond.speeds(r)
-    out = get_engine("rigid").solve(bat.model, inputs.ball.model, p["pivot"],
-                                    ImpactBatch(r, vp, w1), p["support"])
+    out = get_engine("rigid").solve(bat.model, inputs.ball.model, p.pivot,
+                                    ImpactBatch(r, vp, w1), p.support)
     return out.exit_speed
 
 
 def test_matched_relative_speed(ash):
     """Smith 2001 proposal: the moving body makes the relative speed 60 m/s at the impact point,
     w1 = (V - pitch) / r at every location."""
-    inputs = jobs.load_protocol_any("proposed")
+    inputs = load_protocol_any("proposed")
     res = run(ash, inputs)
     pitch = {"stationary-bat": 60.0, "stationary-ball": 0.0, "pitched-and-swung": 31.0}
     for c in res.conditions:
@@ -67,7 +68,7 @@ def test_matched_relative_speed(ash):
         assert c.bat_angular_speed == pytest.approx((60.0 - pitch[c.name]) / r, rel=1e-12)
         assert c.relative_speed == pytest.approx(60.0, rel=1e-12)
         assert c.rigid_sweet_spot is None  # Eq. 7 assumes speeds that do not vary with r
-    conds = conditions_from_spec(inputs.protocol.values["conditions"], 0.86, 0.15)
+    conds = conditions_from_spec(inputs.protocol.conditions, 0.86, 0.15)
     r = np.linspace(0.4, 0.7, 7)
     for cond in conds:
         vp, w1 = cond.speeds(r)
@@ -78,7 +79,7 @@ def test_matched_relative_speed(ash):
 def test_bat_speed_from_tip_sets_w1(ash):
     """NCAA BESR: 66 mph measured 6 in from the tip, pivot 6 in from the knob:
     w1 = v / (L - 6 in - pivot)."""
-    res = run(ash, jobs.load_protocol_any("ncaa-besr"))
+    res = run(ash, load_protocol_any("ncaa-besr"))
     (c,) = res.conditions
     assert c.bat_angular_speed == pytest.approx(66 * MPH / (0.860 - 6 * IN - 6 * IN), rel=1e-12)
     assert c.pitch_speed == pytest.approx(-70 * MPH, rel=1e-12)
@@ -133,7 +134,7 @@ def test_resolution_is_honoured(ash, protocol):
 
 def test_cop_rule_uses_eq4(ash):
     """ASTM-style: impact at the centre of percussion q = I / (M rbar) about the protocol pivot."""
-    res = run(ash, jobs.load_protocol_any("astm-bpf"))  # pivot 150 mm, as measured
+    res = run(ash, load_protocol_any("astm-bpf"))  # pivot 150 mm, as measured
     (c,) = res.conditions
     assert c.impact_location == pytest.approx(0.209 / (0.906 * 0.429), rel=1e-9)
     assert res.mass_properties.cop == pytest.approx(c.impact_location, rel=1e-12)
@@ -269,7 +270,7 @@ def test_max_metric(ash, protocol):
 
 
 def test_sweep_spans_the_window(ash):
-    res = run(ash, jobs.load_protocol_any("ncaa-besr"))
+    res = run(ash, load_protocol_any("ncaa-besr"))
     (c,) = res.conditions
     grid = np.array(c.sweep.impact_location)
     pivot = 6 * IN
@@ -281,7 +282,7 @@ def test_sweep_spans_the_window(ash):
 
 def test_besr_conditions_consistent(ash):
     """Every per-condition quantity agrees with the closed forms at the located point."""
-    res = run(ash, jobs.load_protocol_any("ncaa-besr"))
+    res = run(ash, load_protocol_any("ncaa-besr"))
     (c,) = res.conditions
     moi, m = res.mass_properties.moi_pivot, 5.125 * 0.028349523125
     r, vp, w1, vb, w2 = (c.impact_location, c.pitch_speed, c.bat_angular_speed, c.exit_speed,
@@ -297,7 +298,7 @@ def test_besr_conditions_consistent(ash):
 
 
 def test_rigid_bpf_warning(ash):
-    res = run(ash, jobs.load_protocol_any("astm-bpf"))
+    res = run(ash, load_protocol_any("astm-bpf"))
     assert res.conditions[0].bpf == pytest.approx(1.0, rel=1e-12)
     assert any("BPF is 1 by construction" in w for w in res.warnings)
 
@@ -310,7 +311,7 @@ def test_window_beyond_the_pivot_is_refused(ash, protocol):
 
 
 def test_results_round_trip(ash):
-    res = run(ash, jobs.load_protocol_any("proposed"))
+    res = run(ash, load_protocol_any("proposed"))
     again = RunResult.from_dict(res.to_dict())
     assert again == res
     assert math.isfinite(again.value)
@@ -320,9 +321,7 @@ def test_results_round_trip(ash):
 def test_flat_metric_uses_the_sweet_spot_with_a_warning():
     # Rigid engine, stationary bat: BBCOR equals the ball's COR at every location (Smith 2001
     # Eq. 3 with Eq. 1), so max-metric has no maximum; the runner says so and uses the sweet spot.
-    from batcert import jobs
-    result = jobs.run(jobs.load_bat_any("ash-34"), [jobs.load_protocol_any("ncaa-bbcor")],
-                      "rigid")[0]
+    result = run_bat(load_bat_any("ash-34"), [load_protocol_any("ncaa-bbcor")], "rigid")[0]
     c = result.conditions[0]
     assert c.impact_location == c.sweet_spot
     assert any("does not vary with impact location" in w for w in result.warnings)

@@ -7,10 +7,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from batcert import jobs
+from batcert.commands.inputs import detect_kind, load_protocol_any
 from batcert.errors import InputError
+from batcert.model.build import build_bat
 from batcert.specs.ball import load_ball
-from batcert.specs.bat import build_bat, load_bat
+from batcert.specs.bat import load_bat
 from batcert.specs.protocol import load_protocol
 from batcert.specs.resolve import NotFound, resolve, shipped_names
 from batcert.specs.yamlio import load_yaml_text
@@ -44,58 +45,58 @@ def test_every_shipped_file_validates(repo_root, batcert_cli):
 
 def test_ash_spec_in_si(repo_root):
     spec = load_bat(repo_root / "bats" / "ash-34.yaml")
-    v = spec.values
-    assert v["length"] == pytest.approx(0.860)
-    z, d = v["profile"]
+    assert spec.length == pytest.approx(0.860)
+    z, d = spec.profile
     assert z[0] == 0.0 and z[-1] == pytest.approx(0.860)
     assert d[0] == pytest.approx(2.40 * IN)
-    assert v["measured"]["pivot"] == pytest.approx(0.150)
-    assert v["measured"]["mass"] == pytest.approx(0.906)
-    assert v["measured"]["cg"] == pytest.approx(0.429)
-    assert v["measured"]["moi"] == pytest.approx(0.209)
-    assert v["material"].name == "ash"
+    assert spec.measured.pivot == pytest.approx(0.150)
+    assert spec.measured.mass == pytest.approx(0.906)
+    assert spec.measured.cg == pytest.approx(0.429)
+    assert spec.measured.moi == pytest.approx(0.209)
+    assert spec.material.name == "ash"
+    assert spec.source.line("measured", "mass") == spec.source.line("measured") + 2
     assert len(spec.sha256) == 64
 
 
 def test_bat_defaults(fixtures_dir):
-    v = load_bat(fixtures_dir / "good" / "solid-bat.yaml").values
-    assert v["knob_mass"] == 0.0 and v["end_cap_mass"] == 0.0
-    assert v["slice_length"] == 0.01
-    assert v["reconcile"] == "density-profile"
-    assert v["measured"] is None and v["wall"] is None
+    v = load_bat(fixtures_dir / "good" / "solid-bat.yaml")
+    assert v.knob_mass == 0.0 and v.end_cap_mass == 0.0
+    assert v.slice_length == 0.01
+    assert v.reconcile == "density-profile"
+    assert v.measured is None and v.wall is None
 
 
 def test_wall_constant_and_per_station(fixtures_dir, repo_root):
-    assert load_bat(fixtures_dir / "good" / "hollow-bat.yaml").values["wall"] == pytest.approx(
-        0.0025)
-    z, t = load_bat(repo_root / "bats" / "aluminium-34.yaml").values["wall"]
+    assert load_bat(fixtures_dir / "good" / "hollow-bat.yaml").wall == pytest.approx(0.0025)
+    z, t = load_bat(repo_root / "bats" / "aluminium-34.yaml").wall
     assert z[1] == pytest.approx(11 * IN) and t[-1] == pytest.approx(0.0027)
 
 
 def test_inline_material_and_measured_default_pivot(repo_root):
-    v = load_bat(repo_root / "bats" / "r161.yaml").values
-    m = v["material"]
+    v = load_bat(repo_root / "bats" / "r161.yaml")
+    m = v.material
     assert (m.density, m.youngs_modulus, m.shear_modulus) == (649.0, 1.814e10, 1.05e9)
     assert m.poisson_ratio == 0.3 and m.loss_factor == 0.0  # schema defaults
-    assert v["measured"]["pivot"] == pytest.approx(6 * IN)  # default: 6 in from the knob
-    assert v["shear_correction"] == 1.0
+    assert v.measured.pivot == pytest.approx(6 * IN)  # default: 6 in from the knob
+    assert v.shear_correction == 1.0
 
 
 def test_protocol_values_and_defaults(repo_root):
-    p = load_protocol(repo_root / "protocols" / "ncaa-besr.yaml").values
-    assert p["pivot"] == pytest.approx(6 * IN)
-    c = p["conditions"][0]
-    assert c["pitch_speed"] == pytest.approx(70 * MPH)
-    assert c["bat_speed"] == pytest.approx(66 * MPH)
-    assert c["bat_speed_from_tip"] == pytest.approx(6 * IN)
-    loc = p["impact_location"]
-    assert loc["window"] == pytest.approx([2 * IN, 12 * IN])
-    assert (loc["sweep_points"], loc["resolution"]) == (71, 0.001)  # defaults
-    assert p["support"] == "pinned" and p["aggregate"] == "mean"
-    assert p["limit"] == {"max": 0.728, "tolerance": 0.0, "source": p["limit"]["source"]}
-    proposed = load_protocol(repo_root / "protocols" / "proposed.yaml").values
-    assert proposed["impact_location"]["window"] == [0.03, 0.30]  # default window from the tip
-    assert proposed["limit"] is None
+    p = load_protocol(repo_root / "protocols" / "ncaa-besr.yaml")
+    assert p.pivot == pytest.approx(6 * IN)
+    c = p.conditions[0]
+    assert c.pitch_speed == pytest.approx(70 * MPH)
+    assert c.bat_speed == pytest.approx(66 * MPH)
+    assert c.bat_speed_from_tip == pytest.approx(6 * IN)
+    loc = p.impact_location
+    assert loc.window == pytest.approx((2 * IN, 12 * IN))
+    assert (loc.sweep_points, loc.resolution) == (71, 0.001)  # defaults
+    assert p.support == "pinned" and p.aggregate == "mean"
+    assert (p.limit.max, p.limit.tolerance) == (0.728, 0.0)
+    assert p.line("limit", "max") is not None and p.line("limit", "max") > p.line("limit")
+    proposed = load_protocol(repo_root / "protocols" / "proposed.yaml")
+    assert proposed.impact_location.window == (0.03, 0.30)  # default window from the tip
+    assert proposed.limit is None
 
 
 def test_ball_values(repo_root):
@@ -125,14 +126,14 @@ def test_protocol_ball_path_relative_to_protocol(tmp_path, fixtures_dir):
     proto.write_text("id: mine\ntitle: t\nreference: r\nversion: '1'\nball: my-ball.yaml\n"
                      "conditions:\n  - name: c\n    relative_speed: 60 m/s\n    stationary: ball\n"
                      "impact_location:\n  rule: sweet-spot\nmetric: exit-speed\n")
-    inputs = jobs.load_protocol_any(str(proto))
+    inputs = load_protocol_any(str(proto))
     assert inputs.ball.name == "Test ball"
-    assert inputs.protocol.values["conditions"][0]["stationary"] == "ball"
+    assert inputs.protocol.conditions[0].stationary == "ball"
 
 
 @pytest.mark.parametrize("name, kind", [("good/solid-bat.yaml", "bat"), ("good/ball.yaml", "ball")])
 def test_detect_kind(fixtures_dir, name, kind):
-    assert jobs.detect_kind(str(fixtures_dir / name)) == kind
+    assert detect_kind(str(fixtures_dir / name)) == kind
 
 
 def test_yaml_positions():

@@ -16,12 +16,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from batcert.physics import beam, contact
+from batcert.physics import contact
+from batcert.physics.modes import cached_modes, mode_nodes
 from batcert.physics.ball import BallModel
-from batcert.physics.engine import ImpactBatch
-from batcert.physics.flexible import FlexibleEngine
-from batcert.physics.reconcile import MeasuredMassProperties, reconcile
-from batcert.physics.rigid import RigidEngine
+from batcert.engines import ImpactBatch
+from batcert.engines.flexible import FlexibleEngine
+from batcert.model.reconcile import MeasuredMassProperties, reconcile
+from batcert.engines.rigid import RigidEngine
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/, for the shared helper
 from r161 import r161_bat  # noqa: E402
@@ -122,7 +123,7 @@ def test_modes_up_to_about_the_fourth_are_excited(r161):
     z0 = r161.balance_point - 24.0 / 51.0
     out = FlexibleEngine(n_modes=18, record_states=True).solve(
         r161, nathan_ball(0.5), z0, ImpactBatch(z - z0, -40.0, 51.0), support="free")
-    modes = beam.cached_modes(r161, "free", z0, 18)
+    modes = cached_modes(r161, "free", z0, 18)
     d = out.diagnostics
     energy = 0.5 * (d["modal_velocity"][:, 2:] ** 2
                     + (modes.omega[2:] * d["bending_displacement"]) ** 2)
@@ -145,8 +146,8 @@ def test_low_speed_exit_speed_equals_rigid_at_the_mode_1_node(r161):
     # Nathan 2000 (H): 1 m/s ball on a stationary bat: the exit speed equals the rigid value at
     # the node of mode 1 (68 cm) and the rigid curve peaks at the CG. e0 = 0.66 (his 1 m/s fit).
     # 1 % at the node ("equals"; model +0.2 %); the rigid peak within the 1 cm grid of the CG.
-    modes = beam.cached_modes(r161, "free", 0.0, 24)
-    node = beam.mode_nodes(modes, 1)[-1]
+    modes = cached_modes(r161, "free", 0.0, 24)
+    node = mode_nodes(modes, 1)[-1]
     assert node == pytest.approx(0.68, abs=0.01)
     z = np.append(np.arange(0.40, 0.80, 0.01), node)
     batch = ImpactBatch(z, -1.0, 0.0)  # pivot at the knob: only a reference point here

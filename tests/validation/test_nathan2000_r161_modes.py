@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from batcert.physics import beam
+from batcert.physics.modes import compute_modes, mode_nodes
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/, for the shared helper
 from r161 import r161_bat  # noqa: E402
@@ -45,7 +45,7 @@ def test_r161_profile_mass_properties(r161):
 
 
 def test_free_free_timoshenko_frequencies(r161):
-    f = beam.compute_modes(r161, "free", 0.15, n_modes=5).frequencies_hz
+    f = compute_modes(r161, "free", 0.15, n_modes=5).frequencies_hz
     assert f[0] == pytest.approx(TIMOSHENKO_HZ[0], rel=REL_MODE_1)
     np.testing.assert_allclose(f[1:], TIMOSHENKO_HZ[1:], rtol=REL_MODES_2_5)
 
@@ -55,13 +55,13 @@ def test_free_free_euler_bernoulli_frequencies(r161):
     # tolerances and the same reason as the Timoshenko column.
     eb = dataclasses.replace(r161, shear_stiffness=np.full(84, np.inf),
                              rotary_inertia=np.zeros(84))
-    f = beam.compute_modes(eb, "free", 0.15, n_modes=5).frequencies_hz
+    f = compute_modes(eb, "free", 0.15, n_modes=5).frequencies_hz
     assert f[0] == pytest.approx(EULER_BERNOULLI_HZ[0], rel=REL_MODE_1)
     np.testing.assert_allclose(f[1:], EULER_BERNOULLI_HZ[1:], rtol=REL_MODES_2_5)
 
 
 @pytest.mark.parametrize("mode", [1, 2, 3])
 def test_free_free_node_positions(r161, mode):
-    modes = beam.compute_modes(r161, "free", 0.15, n_modes=5)
-    nodes = beam.mode_nodes(modes, mode)
+    modes = compute_modes(r161, "free", 0.15, n_modes=5)
+    nodes = mode_nodes(modes, mode)
     np.testing.assert_allclose(nodes, np.array(NODES_CM[mode]) / 100.0, atol=NODE_TOL)

@@ -1,0 +1,2 @@
+"""Analyses over run results: bat comparison, study claims, league rules (pure: results in,
+results out; no I/O)."""

@@ -1,0 +1,256 @@
+"""Findings and claim checks of a bat comparison: what the numbers show, in words.
+
+:func:`findings` states per protocol the mean, spread and sign pattern of the relative performance
+P, and what the engine cannot show. :func:`evaluate_claim` tests one claim of a study file with the
+check registered for it in :data:`CLAIM_CHECKS` (name, meaning and function together; the study
+schema takes its names from here). A check returns ``supported``, ``not-supported`` or
+``not-testable`` (e.g. the sweet spot lies on the search window's edge) with the evidence; nothing
+is ever assumed supported.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from batcert.reports.format import percent
+from batcert.results.compare import ClaimResult, ComparisonResult
+
+if TYPE_CHECKING:
+    from batcert.specs.study import ClaimSpec
+
+
+def _sign(p: float, tol: float) -> int:
+    return 1 if p > tol else -1 if p < -tol else 0
+
+
+def findings(result: ComparisonResult, tol: float = 0.005) -> list[str]:
+    """Plain statements of what the numbers show, per protocol and across protocols."""
+    out = []
+    ref = result.reference
+    signs: dict[str, set[int]] = {lab: set() for lab in result.compared}
+    for p in result.protocols:
+        for lab in result.compared:
+            s = p.relative_spread[lab]
+            if s.mean is None:
+                out.append(f"{p.protocol}: P of {lab} against {ref} is undefined (a reference "
+                           "value is zero).")
+                continue
+            ps = [c.bats[lab].relative for c in p.conditions]
+            kinds = {_sign(v, tol) for v in ps if v is not None}
+            signs[lab] |= kinds
+            if kinds == {0}:
+                shape = f"no difference beyond ±{tol * 100:g} % in any condition"
+            elif len(kinds - {0}) == 2:
+                shape = "the sign changes between conditions"
+            elif 0 in kinds:
+                shape = f"some conditions show no difference beyond ±{tol * 100:g} %"
+            else:
+                shape = "the same sign in every condition"
+            spread = (f"; std {s.std * 100:.2f} %, range {percent(s.min)} to {percent(s.max)} over "
+                      f"{len(ps)} conditions" if len(ps) > 1 else "")
+            out.append(f"{p.protocol} ({p.metric}, {p.impact_rule}): P of {lab} against {ref} "
+                       f"has mean {percent(s.mean)}{spread}: {shape}.")
+    for lab, kinds in signs.items():
+        if {1, -1} <= kinds:
+            out.append(f"Across the protocols and conditions, P of {lab} takes both signs: the "
+                       "methods disagree on which bat performs better.")
+        elif kinds == {0}:
+            out.append(f"No protocol separates {lab} from {ref} by more than ±{tol * 100:g} %.")
+    edges = [b for p in result.protocols for c in p.conditions for b in c.bats.values()]
+    n_edge = sum(b.sweet_spot_at_edge for b in edges)
+    if n_edge:
+        out.append(f"In {n_edge} of {len(edges)} bat-conditions the exit-speed maximum lies on "
+                   "the search window's edge: the sweet spot there is not located, and protocols "
+                   "that strike the sweet spot strike the window's edge instead.")
+    if result.engine == "rigid":
+        out.append("Engine: rigid. The ball-bat COR is the ball's own COR at the relative speed, "
+                   "so BPF is 1 for every bat and P under a BPF protocol is 0 by construction, and "
+                   "the sweet spot follows the rigid formula (Eq. 7). Differences between bats "
+                   "come from mass properties only (MOI, CG); barrel flexing (the trampoline "
+                   "effect) and vibration losses are not modelled by this engine, so a claim "
+                   "that a hollow bat's advantage is shown cannot be supported, and one that it "
+                   "is hidden is supported only trivially.")
+    return out
+
+
+def _entries(result: ComparisonResult, pids: Sequence[str], labels: Sequence[str] | None = None):
+    labels = result.compared if labels is None else labels
+    for pid in pids:
+        p = result.protocol(pid)
+        for c in p.conditions:
+            for lab in labels:
+                yield p, c, lab, c.bats[lab]
+
+
+def _check_sign_disagreement(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, str]:
+    tol = claim.tolerance
+    vals = [(b.relative, f"{lab}, {p.protocol}/{c.name}")
+            for p, c, lab, b in _entries(result, claim.protocols)]
+    if any(v is None for v, _ in vals):
+        return "not-testable", "P is undefined in at least one condition."
+    lo, hi = min(vals, key=lambda t: t[0]), max(vals, key=lambda t: t[0])
+    n_pos = sum(v > tol for v, _ in vals)
+    n_neg = sum(v < -tol for v, _ in vals)
+    text = (f"P ranges from {percent(lo[0])} ({lo[1]}) to {percent(hi[0])} ({hi[1]}); {n_pos} of "
+            f"{len(vals)} values above +{tol * 100:g} %, {n_neg} below -{tol * 100:g} %.")
+    return ("supported" if n_pos and n_neg else "not-supported"), text
+
+
+def _check_consistent(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, str]:
+    tol, ok, parts = claim.tolerance, True, []
+    yard = None
+    if claim.compare_with:
+        ys = [b.relative for _, _, _, b in _entries(result, claim.compare_with)]
+        if any(v is None for v in ys):
+            return "not-testable", "P is undefined in a yardstick protocol."
+        yard = max(ys) - min(ys)
+    for pid in claim.protocols:
+        p = result.protocol(pid)
+        for lab in result.compared:
+            ps = [c.bats[lab].relative for c in p.conditions]
+            if any(v is None for v in ps):
+                return "not-testable", f"P is undefined in {pid}."
+            kinds = {_sign(v, tol) for v in ps}
+            rng = max(ps) - min(ps)
+            same = len(kinds) == 1 and 0 not in kinds
+            smaller = yard is None or rng < yard
+            ok &= same and smaller
+            parts.append(f"{pid}, {lab}: P from {percent(min(ps))} to {percent(max(ps))} (range "
+                         f"{rng * 100:.2f} %), "
+                         + ("one sign throughout" if same else
+                            f"not one sign beyond ±{tol * 100:g} %"))
+    text = "; ".join(parts) + "."
+    if yard is not None:
+        text += (f" Range over {', '.join(claim.compare_with or [])}: {yard * 100:.2f} %.")
+    return ("supported" if ok else "not-supported"), text
+
+
+def _check_advantage(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, str]:
+    tol, shown, parts = claim.tolerance, [], []
+    for pid in claim.protocols:
+        for lab in result.compared:
+            m = result.protocol(pid).relative_spread[lab].mean
+            if m is None:
+                return "not-testable", f"P is undefined in {pid}."
+            shown.append(m > tol)
+            parts.append(f"{pid}: mean P of {lab} {percent(m)}")
+    ok = all(shown) if claim.expected == "shown" else not any(shown)
+    return ("supported" if ok else "not-supported"), "; ".join(parts) + "."
+
+
+def _check_lower_than(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, str]:
+    low, high = claim.protocols
+    tol, ok, parts = claim.tolerance, True, []
+    for lab in result.compared:
+        a = result.protocol(low).relative_spread[lab].mean
+        b = result.protocol(high).relative_spread[lab].mean
+        if a is None or b is None:
+            return "not-testable", "P is undefined."
+        ok &= a < b - tol
+        moi = result.protocol(low).mass
+        parts.append(f"{lab} (MOI {moi[lab].moi_pivot:.4f} kg m², reference "
+                     f"{moi[result.reference].moi_pivot:.4f}): mean P {percent(a)} under {low}, "
+                     f"{percent(b)} under {high}")
+    return ("supported" if ok else "not-supported"), "; ".join(parts) + "."
+
+
+def _located(result: ComparisonResult, claim: dict, labels: Sequence[str]):
+    entries = list(_entries(result, claim.protocols, labels))
+    good = [e for e in entries if not e[3].sweet_spot_at_edge]
+    note = (f" {len(entries) - len(good)} of {len(entries)} bat-conditions left out: their "
+            "sweet spot lies on the search window's edge (the true maximum is outside it)."
+            if len(good) < len(entries) else "")
+    return good, note
+
+
+def _check_cop_not_sweet(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, str]:
+    tol = claim.location_tolerance
+    good, note = _located(result, claim, [b.label for b in result.bats])
+    if not good:
+        return "not-testable", "No sweet spot was located inside the search window." + note
+    offsets = [e[3].sweet_spot_minus_cop for e in good]
+    far = sum(abs(o) > tol for o in offsets)
+    text = (f"Sweet spot minus COP from {min(offsets) * 100:+.1f} to {max(offsets) * 100:+.1f} cm; "
+            f"{far} of {len(offsets)} beyond ±{tol * 100:g} cm.{note}")
+    return ("supported" if far == len(offsets) else "not-supported"), text
+
+
+def _check_offset_differs(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, str]:
+    tol = claim.location_tolerance
+    good, note = _located(result, claim, [b.label for b in result.bats])
+    means = {}
+    for lab in [b.label for b in result.bats]:
+        o = [e[3].sweet_spot_minus_cop for e in good if e[2] == lab]
+        if not o:
+            return "not-testable", f"No located sweet spot for {lab}." + note
+        means[lab] = sum(o) / len(o)
+    ref = means[result.reference]
+    ok = all(abs(means[lab] - ref) > tol for lab in result.compared)
+    text = "; ".join(f"{lab}: mean offset {m * 100:+.1f} cm" for lab, m in means.items()) + "."
+    return ("supported" if ok else "not-supported"), text + note
+
+
+def _check_sweet_spot_moves(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, str]:
+    parts, ok, tested = [], True, 0
+    for pid in claim.protocols:
+        p = result.protocol(pid)
+        for b in result.bats:
+            pts = [(c.bats[b.label].sweet_spot, c.bats[b.label].rigid_sweet_spot)
+                   for c in p.conditions if c.bats[b.label].rigid_sweet_spot is not None
+                   and not c.bats[b.label].sweet_spot_at_edge]
+            if len(pts) < 2:
+                continue
+            tested += 1
+            model = max(s for s, _ in pts) - min(s for s, _ in pts)
+            rigid = max(r for _, r in pts) - min(r for _, r in pts)
+            ok &= model <= claim.factor * rigid
+            parts.append(f"{pid}, {b.label}: sweet spot moves {model * 100:.1f} cm, Eq. 7 "
+                         f"{rigid * 100:.1f} cm")
+    if not tested:
+        return "not-testable", ("Fewer than two fixed-speed conditions with a sweet spot located "
+                                "inside the search window (Eq. 7 needs w1 > 0).")
+    return ("supported" if ok else "not-supported"), "; ".join(parts) + "."
+
+
+@dataclass(frozen=True)
+class ClaimCheck:
+    """One way of testing a study's claim against a comparison: name, meaning, function."""
+
+    name: str
+    doc: str
+    check: Callable[[ComparisonResult, ClaimSpec], tuple[str, str]]
+
+
+CLAIM_CHECKS: dict[str, ClaimCheck] = {c.name: c for c in (
+    ClaimCheck("sign-disagreement", "P of the compared bat takes both signs (beyond `tolerance`) "
+               "across the protocols' conditions: the methods disagree on which bat is better.",
+               _check_sign_disagreement),
+    ClaimCheck("consistent-across-conditions", "In each protocol P has one sign in every "
+               "condition, beyond `tolerance`, and its range across conditions is smaller than "
+               "the range over `compare_with` (when given).", _check_consistent),
+    ClaimCheck("advantage", "`expected: shown`: the mean P of every compared bat exceeds "
+               "`tolerance` in every protocol; `not-shown`: in none of them.", _check_advantage),
+    ClaimCheck("lower-than", "The mean P under the first protocol is below the mean P under the "
+               "second by more than `tolerance` (a metric that ignores MOI underrates a light "
+               "bat).", _check_lower_than),
+    ClaimCheck("cop-not-sweet-spot", "For every bat and condition the sweet spot lies more than "
+               "`location_tolerance` from the centre of percussion.", _check_cop_not_sweet),
+    ClaimCheck("cop-offset-differs", "The mean sweet-spot-minus-COP offset differs between the "
+               "bats by more than `location_tolerance`.", _check_offset_differs),
+    ClaimCheck("sweet-spot-moves-less-than-rigid", "Across conditions with fixed speeds the "
+               "sweet spot moves less than `factor` times the movement of the rigid sweet spot "
+               "(Smith 2001 Eq. 7).", _check_sweet_spot_moves),
+)}
+
+
+def evaluate_claim(result: ComparisonResult, claim: ClaimSpec) -> ClaimResult:
+    """Test one study claim against the comparison; the status never defaults to supported."""
+    wanted = [*claim.protocols, *(claim.compare_with or [])]
+    missing = [p for p in wanted if p not in {x.protocol for x in result.protocols}]
+    if missing:
+        status, text = "not-testable", f"Protocols not in this comparison: {', '.join(missing)}."
+    else:
+        status, text = CLAIM_CHECKS[claim.check].check(result, claim)
+    return ClaimResult(claim.id, claim.statement, claim.source or "", claim.check, status, text)

@@ -1,0 +1,67 @@
+"""``batcert compare``: every bat under every protocol (a study's, then any extra ones), side by
+side. Every input is loaded before anything runs."""
+
+from __future__ import annotations
+
+from batcert.analysis.compare import bat_labels, compare
+from batcert.commands.inputs import (LoadedBat, ProtocolInputs, load_bats, load_protocol_any,
+                                     load_study_any, protocol_inputs, same_file)
+from batcert.engines import get_engine
+from batcert.errors import UsageProblem
+from batcert.results.compare import BatEntry, ComparisonResult
+from batcert.runner.runner import run_protocol
+from batcert.specs.resolve import resolve
+from batcert.specs.study import StudySpec
+
+
+def _protocols(spec: StudySpec | None, extra: list[str]) -> list[ProtocolInputs]:
+    out = [protocol_inputs(p) for p in spec.protocols] if spec else []
+    out += [load_protocol_any(p) for p in extra]
+    if not out:
+        raise UsageProblem("give at least one --protocol, or a --study")
+    ids = [p.protocol.id for p in out]
+    dup = sorted({i for i in ids if ids.count(i) > 1})
+    if dup:
+        raise UsageProblem(f"protocol {', '.join(map(repr, dup))} given twice")
+    return out
+
+
+def _bats(bats: list[str], spec: StudySpec | None, reference: str | None
+          ) -> tuple[list[LoadedBat], int]:
+    """The bats to compare and the index of the reference bat (added when not among them)."""
+    if bats:
+        loaded = load_bats(bats)
+    elif spec and spec.bats:
+        loaded = load_bats([str(p) for p in spec.bats])
+    else:
+        raise UsageProblem("give the bats to compare (or a study that names default bats)")
+    ref = 0
+    if reference is not None:
+        ref_path = resolve("bat", reference)
+        ref = next((i for i, b in enumerate(loaded) if same_file(b.path, ref_path)), -1)
+        if ref < 0:
+            loaded = load_bats([reference]) + loaded
+            ref = 0
+    if len(loaded) < 2:
+        raise UsageProblem("a comparison needs at least two bats")
+    return loaded, ref
+
+
+def run_comparison(bats: list[str], protocols: list[str], study: str | None = None,
+                   reference: str | None = None, engine: str = "flexible") -> ComparisonResult:
+    """Run every bat under every protocol and compare them (Smith 2001 Eq. 6)."""
+    spec = load_study_any(study) if study else None
+    proto_inputs = _protocols(spec, protocols)
+    loaded, ref = _bats(bats, spec, reference)
+    eng = get_engine(engine)
+    runs = [[run_protocol(b.built, p.protocol, p.ball, eng) for p in proto_inputs]
+            for b in loaded]
+    labels = bat_labels([b.built.spec.name for b in loaded], [str(b.path) for b in loaded])
+    entries = [BatEntry(lab, b.built.spec.name, str(b.path), b.built.spec.sha256,
+                        b.built.model.length, b.built.model.construction,
+                        b.built.model.material.name) for lab, b in zip(labels, loaded)]
+    return compare(runs, ref, bats=entries, title=spec.title if spec else "",
+                   study=spec.id if spec else None,
+                   study_reference=spec.reference if spec else "",
+                   study_notes=(spec.notes or "") if spec else "",
+                   claims=spec.claims if spec else ())

@@ -1,0 +1,91 @@
+"""Loading the inputs of a command: bats, protocols with their balls, studies and leagues, by
+shipped name or path. Every input is loaded (and every bat built) before anything runs."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from batcert.model.build import BuiltBat, build_bat
+from batcert.specs.ball import BallSpec, load_ball
+from batcert.specs.bat import load_bat
+from batcert.specs.common import sha256_of
+from batcert.specs.league import LeagueSpec, load_league
+from batcert.specs.protocol import ProtocolSpec, load_protocol
+from batcert.specs.resolve import NotFound, resolve
+from batcert.specs.study import StudySpec, load_study
+from batcert.specs.yamlio import load_yaml
+
+
+@dataclass(frozen=True)
+class ProtocolInputs:
+    """A loaded protocol with its ball."""
+
+    protocol: ProtocolSpec
+    ball: BallSpec
+
+
+@dataclass(frozen=True)
+class LoadedBat:
+    path: Path
+    built: BuiltBat
+
+
+def load_bat_any(value: str, relative_to: Path | None = None) -> LoadedBat:
+    """A bat from a path or a shipped name (e.g. ``ash-34``), built and reconciled."""
+    path = resolve("bat", value, relative_to=relative_to)
+    return LoadedBat(path, build_bat(load_bat(path)))
+
+
+def load_bats(values: list[str], relative_to: Path | None = None) -> list[LoadedBat]:
+    return [load_bat_any(v, relative_to) for v in values]
+
+
+def protocol_ball_path(protocol: ProtocolSpec) -> Path:
+    """The protocol's ball file; an unknown ball is invalid input in the protocol file (its
+    ``ball:`` line), not a usage error."""
+    try:
+        return resolve("ball", protocol.ball, relative_to=Path(protocol.path))
+    except NotFound as exc:
+        raise protocol.source.problem(".".join(map(str, protocol.origin + ("ball",))),
+                                      str(exc)) from None
+
+
+def protocol_inputs(protocol: ProtocolSpec) -> ProtocolInputs:
+    """A loaded protocol with its ball."""
+    return ProtocolInputs(protocol, load_ball(protocol_ball_path(protocol)))
+
+
+def load_protocol_any(value: str, relative_to: Path | None = None) -> ProtocolInputs:
+    """A protocol from a path or a shipped id (e.g. ``proposed``), with its ball."""
+    return protocol_inputs(load_protocol(resolve("protocol", value, relative_to=relative_to)))
+
+
+def load_study_any(value: str) -> StudySpec:
+    return load_study(resolve("study", value))
+
+
+def load_league_any(value: str) -> LeagueSpec:
+    return load_league(resolve("league", value))
+
+
+def same_file(a: Path, b: Path) -> bool:
+    """The same input: one path, or identical content (a shipped name resolves to the copy
+    installed with the package, which is the same bat as the checkout's file)."""
+    return a.resolve() == b.resolve() or sha256_of(a) == sha256_of(b)
+
+
+def detect_kind(path: str) -> str:
+    """Guess a spec file's kind from its keys (bat, ball, protocol, league, study)."""
+    data = load_yaml(path)
+    if "conditions" in data or "metric" in data:
+        return "protocol"
+    if "rules" in data:
+        return "league"
+    if "protocols" in data:
+        return "study"
+    if "construction" in data or "profile" in data:
+        return "bat"
+    if "cor" in data or "contact" in data:
+        return "ball"
+    return "bat"

@@ -1,0 +1,72 @@
+"""The impact-engine interface shared by the rigid and flexible tiers.
+
+An engine solves a batch of impacts (impact locations x conditions flattened to one axis) of one
+bat and one ball in one call, vectorised over the batch. Engines are listed in
+:data:`batcert.engines.ENGINES`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+
+from batcert.physics.ball import BallModel
+from batcert.physics.batmodel import BatModel
+
+
+@dataclass(frozen=True)
+class ImpactBatch:
+    """Impacts to solve, all arrays of one shape (n,). Bat motion before impact is rotation about
+    the pivot at ``bat_angular_speed``; the ball moves along the normal to the bat."""
+
+    impact_location: np.ndarray  # [m from pivot]
+    pitch_speed: np.ndarray  # ball speed before impact [m/s], negative toward the bat
+    bat_angular_speed: np.ndarray  # [rad/s], positive swings the bat toward the ball
+
+    def __post_init__(self) -> None:
+        r, vp, w = np.broadcast_arrays(np.asarray(self.impact_location, float),
+                                       np.asarray(self.pitch_speed, float),
+                                       np.asarray(self.bat_angular_speed, float))
+        object.__setattr__(self, "impact_location", np.ascontiguousarray(r))
+        object.__setattr__(self, "pitch_speed", np.ascontiguousarray(vp))
+        object.__setattr__(self, "bat_angular_speed", np.ascontiguousarray(w))
+
+    @property
+    def relative_speed(self) -> np.ndarray:
+        """Normal approach speed at the impact point, w1 r - v_p [m/s]."""
+        return self.bat_angular_speed * self.impact_location - self.pitch_speed
+
+    def __len__(self) -> int:
+        return int(self.impact_location.size)
+
+
+@dataclass(frozen=True)
+class ImpactOutcome:
+    """What an engine returns for a batch, arrays of shape (n,)."""
+
+    exit_speed: np.ndarray  # ball speed after impact [m/s]
+    bat_angular_speed_after: np.ndarray  # from momentum balance (Smith 2001 Eq. 1) [rad/s]
+    cor: np.ndarray  # ball-bat COR, Smith 2001 Eq. 3 [-]
+    recoil_factor: np.ndarray  # effective-mass ratio k of the bat at each impact [-]
+    diagnostics: dict[str, np.ndarray] = field(default_factory=dict)  # per impact, SI
+
+
+class Engine(Protocol):
+    """What the runner needs of an engine tier."""
+
+    name: str
+    #: metric name -> warning: metrics that this engine cannot resolve (e.g. BPF is 1 by
+    #: construction for a rigid bat)
+    limitations: dict[str, str]
+
+    def solve(self, bat: BatModel, ball: BallModel, pivot: float, batch: ImpactBatch,
+              support: str = "pinned") -> ImpactOutcome:
+        """Solve every impact of ``batch``; ``pivot`` is measured from the knob [m];
+        ``support`` is "pinned" (bat pinned at the pivot) or "free"."""
+        ...
+
+    def settings(self) -> dict:
+        """Engine settings recorded in the results (time step, modes, ...)."""
+        ...

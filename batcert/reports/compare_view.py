@@ -1,0 +1,252 @@
+"""The comparison report: everything its Markdown and HTML show, formatted once.
+
+:func:`comparison_view` turns a :class:`~batcert.results.compare.ComparisonResult` into tables of
+display cells, badges and (for HTML) inline SVG charts; ``compare.md.j2`` and ``compare.html.j2``
+only arrange them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from batcert.reports import format as fmt
+from batcert.reports.table import Badge, Table
+from batcert.results.compare import ComparisonResult, ProtocolComparison
+
+CLAIM_BADGES = {"supported": Badge("supported", "pass"),
+                "not-supported": Badge("not supported", "fail"),
+                "not-testable": Badge("not testable", "warn")}
+VERDICT_BADGES = {"pass": Badge("PASS", "pass"), "fail": Badge("FAIL", "fail"),
+                  "not-modelled": Badge("NOT MODELLED", "warn"),
+                  "not-applicable": Badge("not applicable", "na"),
+                  "incomplete": Badge("INCOMPLETE", "warn")}
+
+
+def badge(table: dict[str, Badge], key: str | None) -> Badge:
+    if key is None:
+        return Badge(fmt.DASH, "na")
+    return table.get(key.lower(), Badge(key, "info"))
+
+
+def chart_width(categories: Sequence[str], per_group: int = 1, least: int = 640) -> int:
+    """Wide enough that the category labels under the groups do not overlap (viewBox units)."""
+    longest = max((len(c) for c in categories), default=0)
+    return max(least, int(84 + len(categories) * max(longest * 7.2 + 18, 30 * per_group)))
+
+
+def _pct_for_chart(p: float | None) -> float | None:
+    """P in percent, rounded so that rounding noise (1e-14 %) does not set the axis range."""
+    return None if p is None else round(p * 100, 4) + 0.0
+
+
+def _charts(result: ComparisonResult, p: ProtocolComparison) -> list[dict[str, Any]]:
+    """The protocol's figures: metric per condition, P per condition, sweet spot and COP."""
+    from markupsafe import Markup
+
+    from batcert.reports import svg
+    labels, compared = [b.label for b in result.bats], result.compared
+    metric = fmt.metric_word(p.metric)
+    cats = [c.name for c in p.conditions]
+    width = chart_width(cats, len(labels), least=500)  # two charts side by side
+    out = []
+    unit = " [m/s]" if p.metric == "exit-speed" else " [-]"
+    out.append({"svg": Markup(svg.bar_chart(
+        cats, [svg.BarSeries(lab, [c.bats[lab].value for c in p.conditions]) for lab in labels],
+        title=f"{metric} per condition", y_label=metric + unit, limit=p.limit,
+        value_format="{:.2f}" if p.metric == "exit-speed" else "{:.3f}", width=width)),
+        "caption": f"{metric} of each bat in each condition"
+                   + (f"; the dashed line is the protocol limit "
+                      f"{fmt.metric_value(p.limit, p.metric)}." if p.limit is not None else ".")})
+    pcts = [svg.BarSeries(lab, [_pct_for_chart(c.bats[lab].relative) for c in p.conditions])
+            for lab in compared]
+    if any(v for s in pcts for v in s.values):
+        out.append({"svg": Markup(svg.bar_chart(
+            cats, pcts, title=f"P against {result.reference}", y_label="P [%]",
+            value_format="{:+.2f}", width=width)),
+            "caption": f"Relative performance P of each bat against the reference bat "
+                       f"{result.reference} (P = 0), per condition."})
+    spots = []
+    for lab in labels:  # each bat's sweet spot next to its COP
+        spots.append(svg.BarSeries(f"{lab}: sweet spot",
+                                   [c.bats[lab].sweet_spot for c in p.conditions]))
+        spots.append(svg.BarSeries(f"{lab}: COP", [c.bats[lab].cop for c in p.conditions]))
+    edge = sum(c.bats[lab].sweet_spot_at_edge for c in p.conditions for lab in labels)
+    edge_text = (f" In {edge} of {len(p.conditions) * len(labels)} bat-conditions the sweet spot "
+                 "lies on the search window's edge: the bar shows the edge, not a located "
+                 "maximum." if edge else "")
+    out.append({"svg": Markup(svg.bar_chart(
+        cats, spots, title="Sweet spot and centre of percussion per condition",
+        y_label="distance from the pivot [m]", value_format="{:.3f}", baseline=None,
+        width=chart_width(cats, 2 * len(labels)))),
+        "caption": "Sweet spot (maximum exit speed) and centre of percussion of each bat, in "
+                   f"metres from the pivot ({fmt.quantity(p.pivot, 'length')} from the knob); "
+                   "the axis does not start at zero. The table above gives inches from the tip."
+                   + edge_text})
+    return out
+
+
+def _values(result: ComparisonResult, p: ProtocolComparison, show_setup: bool) -> Table:
+    """The metric of each bat and P of each compared bat, per condition, with P's spread."""
+    labels, compared = [b.label for b in result.bats], result.compared
+    head = ["Condition"] + (["Set-up"] if show_setup else []) + \
+        [f"{fmt.metric_word(p.metric)}: {lab}" for lab in labels] + [f"P: {lab}" for lab in compared]
+    rows = [[c.name] + ([c.setup] if show_setup else [])
+            + [fmt.metric_value(c.bats[lab].value, p.metric) for lab in labels]
+            + [fmt.percent(c.bats[lab].relative) for lab in compared] for c in p.conditions]
+    pad = [""] * (len(labels) + (1 if show_setup else 0))
+    spread = p.relative_spread
+    foot = [
+        ["mean of P across conditions"] + pad + [fmt.percent(spread[lab].mean) for lab in compared],
+        ["std of P (population)"] + pad + [fmt.percent_std(spread[lab].std) for lab in compared],
+        ["range of P (min to max)"] + pad
+        + [fmt.DASH if spread[lab].min is None
+           else f"{fmt.percent(spread[lab].min)} to {fmt.percent(spread[lab].max)}"
+           for lab in compared],
+        [f"aggregate ({fmt.aggregate_word(p.aggregate)})"] + ([""] if show_setup else [])
+        + [fmt.metric_value(p.aggregate_value[lab], p.metric) for lab in labels]
+        + [fmt.percent(p.aggregate_relative[lab]) for lab in compared],
+    ]
+    n_num = len(labels) + len(compared)
+    return Table(head, rows, [False] * (2 if show_setup else 1) + [True] * n_num, foot=foot)
+
+
+def _locations(result: ComparisonResult, p: ProtocolComparison) -> Table:
+    labels = [b.label for b in result.bats]
+    length = {b.label: b.length for b in result.bats}
+    rows, classes = [], []
+    for c in p.conditions:
+        for i, lab in enumerate(labels):
+            b = c.bats[lab]
+
+            def at(r: float | None, lab: str = lab):
+                return fmt.location(r, p.pivot, length[lab])
+            rows.append([c.name if i == 0 else "", lab, at(b.cop), at(b.sweet_spot),
+                         fmt.offset(b.sweet_spot_minus_cop), at(b.rigid_sweet_spot),
+                         at(b.impact_location),
+                         Badge("on edge: not located", "warn") if b.sweet_spot_at_edge else "no"])
+            classes.append("group-start" if i == 0 else "")
+    return Table(["Condition", "Bat", "Centre of percussion (Eq. 4)",
+                  "Sweet spot (max exit speed)", "Sweet spot \u2212 COP",
+                  "Rigid sweet spot (Eq. 7)", "Impact point", "Sweet spot on window edge"],
+                 rows, [False, False, True, True, True, True, True, False], classes)
+
+
+def _protocol_view(result: ComparisonResult, p: ProtocolComparison,
+                   charts: bool) -> dict[str, Any]:
+    from batcert.reports.write import slugify
+    labels, compared = [b.label for b in result.bats], result.compared
+    metric = fmt.metric_word(p.metric)
+    show_setup = any(c.setup != c.name for c in p.conditions)
+    figures = _charts(result, p) if charts else []
+    limit = None
+    if p.limit is not None:
+        limit = {"value": fmt.metric_value(p.limit, p.metric),
+                 "bats": [(lab, fmt.metric_value(p.aggregate_value[lab], p.metric),
+                           badge(VERDICT_BADGES, p.verdicts[lab])) for lab in labels]}
+    n = len(p.conditions)
+    return {
+        "id": p.protocol, "title": p.title, "anchor": "protocol-" + slugify(p.protocol),
+        "metric": metric, "labels": labels, "compared": compared, "show_setup": show_setup,
+        "facts": [("Metric", f"{metric}, {fmt.aggregate_word(p.aggregate)} over {n} "
+                             f"condition{'s' if n != 1 else ''}"),
+                  ("Impact at", fmt.rule_word(p.impact_rule)),
+                  ("Pivot", f"{fmt.quantity(p.pivot, 'length')} from the knob"),
+                  ("Ball", p.ball),
+                  ("Reference", f"{p.reference} (version {p.version})" if p.reference
+                   else f"version {p.version}")],
+        "pivot": fmt.quantity(p.pivot, "length"), "grid": _values(result, p, show_setup),
+        "limit": limit, "cop": _locations(result, p),
+        "charts": figures[:-1], "spot_chart": figures[-1] if figures else None,
+    }
+
+
+def _overview(result: ComparisonResult, charts: bool) -> dict[str, Any]:
+    """P at a glance: per protocol the mean and spread of P of each compared bat."""
+    compared = result.compared
+    rows = []
+    for p in result.protocols:
+        row: list[Any] = [p.protocol, f"{fmt.metric_word(p.metric)} at the "
+                                      f"{fmt.rule_word(p.impact_rule)}"]
+        for lab in compared:
+            s = p.relative_spread[lab]
+            row += [fmt.percent(s.mean), fmt.percent_std(s.std),
+                    fmt.DASH if s.min is None else f"{fmt.percent(s.min)} to {fmt.percent(s.max)}"]
+        rows.append(row)
+    headers = ["Protocol", "Metric and impact location"]
+    for lab in compared:
+        headers += [f"mean P: {lab}", "std of P", "range of P"]
+    table = Table(headers, rows, [False, False] + [True] * (3 * len(compared)))
+    chart = None
+    series_values = [[_pct_for_chart(p.relative_spread[lab].mean) for p in result.protocols]
+                     for lab in compared]
+    if charts and any(v for s in series_values for v in s):
+        from markupsafe import Markup
+
+        from batcert.reports import svg
+        cats = [p.protocol for p in result.protocols]
+        chart = Markup(svg.bar_chart(cats, [svg.BarSeries(lab, vals) for lab, vals in
+                                            zip(compared, series_values)],
+                                     title=f"Mean P against {result.reference}",
+                                     y_label="mean P [%]", value_format="{:+.2f}",
+                                     width=chart_width(cats, len(compared))))
+    return {"table": table, "chart": chart}
+
+
+def _mass(result: ComparisonResult) -> Table:
+    rows, seen = [], set()
+    for p in result.protocols:
+        for b in result.bats:
+            key = (b.label, round(p.pivot, 9))
+            if key in seen:
+                continue
+            seen.add(key)
+            m = p.mass[b.label]
+            rows.append([b.label, fmt.quantity(p.pivot, "length"), fmt.quantity(m.mass, "mass"),
+                         fmt.quantity(m.cg, "length"), fmt.quantity(m.moi_pivot, "moi", 4),
+                         fmt.quantity(m.cop, "length")])
+    return Table(["Bat", "Pivot from knob", "Mass", "CG from pivot", "MOI about pivot",
+                  "COP from pivot"], rows, [False] + [True] * 5)
+
+
+def comparison_view(result: ComparisonResult, charts: bool = True) -> dict[str, Any]:
+    """Everything the comparison report shows, formatted; ``charts`` adds the SVG figures."""
+    labels = [b.label for b in result.bats]
+    title = result.title or " vs ".join(labels)
+    protos = ", ".join(p.protocol for p in result.protocols)
+    facts = []
+    if result.study:
+        facts.append(("Study", result.study + (f" \u2014 {result.study_reference}"
+                                               if result.study_reference else "")))
+    facts += [("Protocols", f"{len(result.protocols)}: {protos}"),
+              ("Bats", ", ".join(labels)),
+              ("Reference bat", f"{result.reference} (P = 0)"),
+              ("Relative performance", "P = (P_bat \u2212 P_ref) / P_ref (Smith 2001, Eq. 6), "
+                                       "per condition"),
+              ("Engine", result.engine),
+              ("Date", fmt.created(result.created)),
+              ("batcert version", result.batcert_version)]
+    bats = Table(["Bat", "Construction", "Material", "Length", "File"],
+                 [[b.label + (" (reference)" if b.label == result.reference else ""),
+                   b.construction or fmt.DASH, b.material or fmt.DASH,
+                   fmt.quantity(b.length, "length"), b.path] for b in result.bats],
+                 [False, False, False, True, False])
+    statuses = list(CLAIM_BADGES) + sorted({c.status for c in result.claims} - set(CLAIM_BADGES))
+    tally = [(badge(CLAIM_BADGES, k), sum(c.status == k for c in result.claims))
+             for k in statuses]
+    claims = [{"id": c.id, "statement": fmt.one_line(c.statement), "check": c.check,
+               "source": c.source, "badge": badge(CLAIM_BADGES, c.status),
+               "evidence": c.evidence} for c in result.claims]
+    return {
+        "result": result, "title": title, "page_title": f"Comparison: {title} \u2014 batcert",
+        "facts": facts, "bats": bats, "inputs": result.inputs,
+        "findings": list(result.findings), "claims": claims,
+        "tally": tally if result.claims else [],
+        "notes": fmt.paragraphs(result.study_notes), "warnings": list(result.warnings),
+        "overview": _overview(result, charts) if result.compared else None,
+        "protocols": [_protocol_view(result, p, charts) for p in result.protocols],
+        "mass": _mass(result),
+        "engine": Table(["Setting", "Value"], [[k, v] for k, v in
+                                               fmt.flatten(result.engine_settings)]),
+        "date": fmt.created(result.created),
+    }

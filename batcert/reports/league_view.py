@@ -1,0 +1,92 @@
+"""The league report: everything its Markdown and HTML show, formatted once."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from batcert.reports import format as fmt
+from batcert.reports.compare_view import VERDICT_BADGES, badge
+from batcert.reports.table import Badge, Table
+from batcert.results.league import LeagueResult, RuleResult
+from batcert.units import Display
+
+VERDICT_WORDS = {"pass": "pass", "fail": "FAIL", "not-applicable": "not applicable",
+                 "not-modelled": "NOT MODELLED"}
+
+
+def overall(bats: Sequence[Any]) -> tuple[Badge, str]:
+    """The headline badge and sentence (the worst bat verdict decides)."""
+    counts = {v: sum(b.verdict == v for b in bats) for v in ("pass", "fail", "incomplete")}
+    n = len(bats)
+    worst = "fail" if counts["fail"] else "incomplete" if counts["incomplete"] else "pass"
+    parts = [f"{counts['pass']} pass", f"{counts['fail']} fail"]
+    if counts["incomplete"]:
+        parts.append(f"{counts['incomplete']} incomplete (a rule is not modelled, none fails)")
+    if n == 1:
+        sentence = {"pass": "The bat passes every rule that applies to it.",
+                    "fail": "The bat fails at least one rule.",
+                    "incomplete": "The bat fails no rule, but at least one rule is not "
+                                  "modelled, so it is not shown to pass."}[worst]
+    else:
+        sentence = f"Of {n} bats, " + ", ".join(parts) + "."
+    return VERDICT_BADGES[worst], sentence
+
+
+def rule_row(r: RuleResult) -> dict[str, Any]:
+    """One rule's cells: value, limit and margin formatted in the rule's unit."""
+    judged = r.verdict in ("pass", "fail")
+    return {"id": r.rule, "title": r.title, "applies_to": r.applies_to, "kind": r.kind,
+            "protocol": r.protocol, "value": fmt.rule_value(r.value, r.unit),
+            "limit": fmt.rule_limit(r.limit, r.unit, r.tolerance),
+            "badge": badge(VERDICT_BADGES, r.verdict), "verdict": r.verdict,
+            "verdict_text": VERDICT_WORDS.get(r.verdict, r.verdict),
+            "margin": fmt.rule_margin(r.margin if judged else None, r.unit),
+            "source": r.source, "confidence": r.confidence, "note": r.note}
+
+
+def league_view(result: LeagueResult) -> dict[str, Any]:
+    """Everything the league report shows, formatted; the templates only arrange it."""
+    head_badge, sentence = overall(result.bats)
+    verdicts = ("pass", "fail", "not-modelled", "not-applicable")
+    summary, bats = [], []
+    for i, b in enumerate(result.bats):
+        anchor = f"bat-{i + 1}"
+        counts = {v: sum(r.verdict == v for r in b.rules) for v in verdicts}
+        summary.append({"bat": b.bat, "anchor": anchor, "badge": badge(VERDICT_BADGES, b.verdict),
+                        "counts": [counts[v] for v in verdicts]})
+        f = b.facts
+        cls = f.get("material_class") or "class unknown"
+        facts = [("Length", fmt.quantity(f["length"], "length")),
+                 ("Mass", fmt.quantity(f["mass"], "mass")),
+                 ("Drop (length in \u2212 weight oz)", Display(f"{f['drop']:.2f}", None)),
+                 ("Barrel diameter", fmt.quantity(f["barrel_diameter"], "length", 4)),
+                 ("Smallest diameter", fmt.quantity(f["min_diameter"], "length", 4)),
+                 ("Construction", Display(str(f["construction"]), None)),
+                 ("Material", Display(f"{f['material']} ({cls})", None))]
+        bats.append({"bat": b.bat, "anchor": anchor, "badge": badge(VERDICT_BADGES, b.verdict),
+                     "path": b.path, "sha256": b.sha256, "facts": facts,
+                     "rules": [rule_row(r) for r in b.rules],
+                     "not_modelled": [(r.rule, r.note or "no reason given")
+                                      for r in b.rules if r.verdict == "not-modelled"],
+                     "warnings": list(b.warnings)})
+    inputs = [{"role": "league", "name": result.league, "path": result.path,
+               "sha256": result.sha256}]
+    inputs += [{"role": "bat", "name": b.bat, "path": b.path, "sha256": b.sha256}
+               for b in result.bats]
+    summary_table = Table(["Bat", "Verdict", "Passed", "Failed", "Not modelled",
+                           "Not applicable"],
+                          [[s["bat"], s["badge"], *map(str, s["counts"])] for s in summary],
+                          [False, False, True, True, True, True])
+    return {
+        "result": result, "page_title": f"League rules: {result.title} \u2014 batcert",
+        "badge": head_badge, "sentence": sentence,
+        "facts": [("League", f"{result.league} (version {result.version})"),
+                  ("Rule book", result.reference or fmt.DASH),
+                  ("Engine (performance rules)", result.engine),
+                  ("Date", fmt.created(result.created)),
+                  ("batcert version", result.batcert_version)],
+        "inputs": inputs, "summary": summary, "summary_table": summary_table, "bats": bats,
+        "description": fmt.paragraphs(result.description), "notes": fmt.paragraphs(result.notes),
+        "date": fmt.created(result.created),
+    }

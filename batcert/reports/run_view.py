@@ -1,0 +1,152 @@
+"""The certificate of one protocol run: everything its Markdown and HTML show, formatted."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from batcert.reports import format as fmt
+from batcert.reports.table import Table
+from batcert.results.run import RunResult
+from batcert.units import Display
+
+
+def verdict(result: RunResult) -> dict[str, Any]:
+    """Badge text and the sentence stating the value against the limit."""
+    name, m = fmt.metric_name(result.metric), result.metric
+    value = fmt.metric_value(result.value, m)
+    if result.verdict is None or result.limit is None:
+        return {"label": "NO LIMIT", "css": "none", "value": value, "limit": None,
+                "tolerance": None, "margin": None,
+                "sentence": f"{name} {value}; the protocol sets no limit."}
+    limit, tol = fmt.metric_value(result.limit, m), fmt.metric_value(result.tolerance, m)
+    margin = fmt.metric_value(result.margin, m, signed_=True)
+    passed = result.verdict.lower() == "pass"
+    relation = "\u2264" if passed else ">"
+    tol_text = f" + tolerance {tol}" if result.tolerance else ""
+    return {
+        "label": "PASS" if passed else "FAIL", "css": "pass" if passed else "fail",
+        "value": value, "limit": limit, "tolerance": tol, "margin": margin,
+        "sentence": f"{name} {value} {relation} limit {limit}{tol_text}; margin {margin}.",
+    }
+
+
+def header_rows(result: RunResult) -> list[tuple[str, str]]:
+    n = len(result.conditions)
+    title = f"{result.protocol} \u2014 {result.protocol_title}" if result.protocol_title \
+        else result.protocol
+    return [
+        ("Bat", result.bat),
+        ("Ball", result.ball),
+        ("Protocol", title),
+        ("Protocol version", result.protocol_version or fmt.DASH),
+        ("Reference", result.protocol_reference or fmt.DASH),
+        ("Metric", f"{fmt.metric_name(result.metric)}, {fmt.aggregate_word(result.aggregate)} "
+                   f"of {n} condition{'s' if n != 1 else ''}"),
+        ("Impact location", fmt.rule_word(result.impact_rule)),
+        ("Engine", f"{result.engine}, bat {result.support} at the pivot"),
+        ("Date", fmt.created(result.created)),
+        ("batcert version", result.batcert_version),
+    ]
+
+
+def _location(r: float | None, result: RunResult) -> Display:
+    mp = result.mass_properties
+    return fmt.location(r, mp.pivot, mp.length)
+
+
+def conditions_table(result: RunResult) -> Table:
+    t = Table(["Condition", "Set-up", "Pitch speed (toward bat)", "Bat angular speed",
+               "Relative speed", "Impact location", "Exit speed", "Bat angular speed after"],
+              numeric=[False, False] + [True] * 6)
+    for c in result.conditions:
+        t.rows.append([c.name, c.setup, fmt.quantity(-c.pitch_speed, "speed", 1),
+                       fmt.quantity(c.bat_angular_speed, "angular_speed", 1),
+                       fmt.quantity(c.relative_speed, "speed", 1),
+                       _location(c.impact_location, result),
+                       fmt.quantity(c.exit_speed, "speed", 2),
+                       fmt.quantity(c.bat_angular_speed_after, "angular_speed", 1)])
+    return t
+
+
+def metrics_table(result: RunResult) -> Table:
+    t = Table(["Condition", "COR e", "Ball COR e_b", "BPF", "BESR", "BBCOR", "e_A",
+               f"Metric: {fmt.metric_name(result.metric)}"], numeric=[False] + [True] * 7)
+    for c in result.conditions:
+        t.rows.append([c.name, fmt.plain(c.cor, 4), fmt.plain(c.ball_cor, 4)]
+                      + [fmt.metric_value(v, m) for v, m in (
+                          (c.bpf, "bpf"), (c.besr, "besr"), (c.bbcor, "bbcor"),
+                          (c.collision_efficiency, "collision-efficiency"))]
+                      + [fmt.metric_value(c.metric_value, result.metric)])
+    return t
+
+
+def locations_table(result: RunResult) -> Table:
+    t = Table(["Condition", "Centre of percussion", "Sweet spot (max exit speed)",
+               "Sweet spot \u2212 COP", "Rigid sweet spot (Eq. 7)", "Impact point",
+               "On window edge"], numeric=[False] + [True] * 5 + [False])
+    for c in result.conditions:
+        t.rows.append([c.name, _location(c.cop, result), _location(c.sweet_spot, result),
+                       fmt.offset(c.sweet_spot - c.cop), _location(c.rigid_sweet_spot, result),
+                       _location(c.impact_location, result),
+                       "yes \u26a0" if c.at_window_edge else "no"])
+    return t
+
+
+def mass_table(result: RunResult) -> Table:
+    mp = result.mass_properties
+    t = Table(["Property", "Model (reconciled)", "Geometry", "Measured"],
+              numeric=[False, True, True, True])
+    t.rows = [
+        ["Mass", fmt.quantity(mp.mass, "mass"), fmt.quantity(mp.geometry_mass, "mass"),
+         fmt.quantity(mp.measured_mass, "mass")],
+        ["CG from pivot", fmt.quantity(mp.cg, "length"), fmt.quantity(mp.geometry_cg, "length"),
+         fmt.quantity(mp.measured_cg, "length")],
+        ["MOI about pivot", fmt.quantity(mp.moi_pivot, "moi", 4),
+         fmt.quantity(mp.geometry_moi_pivot, "moi", 4),
+         fmt.quantity(mp.measured_moi_pivot, "moi", 4)],
+        ["Centre of percussion from pivot", fmt.quantity(mp.cop, "length"),
+         fmt.quantity(mp.geometry_cop, "length"), fmt.quantity(mp.measured_cop, "length")],
+    ]
+    return t
+
+
+def bat_table(result: RunResult) -> Table:
+    mp = result.mass_properties
+    return Table(["Dimension", "Value"], [
+        ["Length", fmt.quantity(mp.length, "length")],
+        ["Pivot from knob", fmt.quantity(mp.pivot, "length")],
+    ], numeric=[False, True])
+
+
+def engine_table(result: RunResult) -> Table:
+    rows: list[list[Any]] = [["engine", result.engine], ["support", result.support]]
+    rows += [[k, v] for k, v in fmt.flatten(result.engine_settings)]
+    rows += [[k, v] for k, v in fmt.flatten(result.extras)]
+    return Table(["Setting or diagnostic", "Value"], rows)
+
+
+def run_view(result: RunResult) -> dict[str, Any]:
+    """Everything a run report shows, formatted; the templates only arrange it."""
+    mp = result.mass_properties
+    return {
+        "result": result,
+        "title": f"{result.bat} \u2014 {result.protocol}",
+        "metric_name": fmt.metric_name(result.metric),
+        "verdict": verdict(result),
+        "header": header_rows(result),
+        "header_table": Table(["Item", "Value"], [list(r) for r in header_rows(result)]),
+        "date": fmt.created(result.created),
+        "pivot": fmt.quantity(mp.pivot, "length"),
+        "inputs": result.inputs,
+        "notes": fmt.paragraphs(result.protocol_notes),
+        "warnings": list(result.warnings),
+        "conditions": conditions_table(result),
+        "metrics": metrics_table(result),
+        "locations": locations_table(result),
+        "mass": mass_table(result),
+        "bat": bat_table(result),
+        "reconciliation": mp.reconciliation,
+        "corrections": [(k, fmt.number(v)) for k, v in mp.corrections.items()],
+        "engine": engine_table(result),
+        "show_metric_plot": result.metric != "exit-speed",
+    }

@@ -1,0 +1,108 @@
+"""Results of a protocol run: plain dataclasses in SI units, serialisable to JSON.
+
+Reports and the terminal only read these; they never compute physics. A results JSON written by
+``batcert run`` can be loaded back with :meth:`RunResult.from_dict` and re-rendered.
+Units are given per field in brackets; all positions along the bat are stated with their origin.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from batcert.results.serialise import Serialisable
+
+
+@dataclass
+class Sweep:
+    """Exit speed (and the protocol metric) against impact location for one condition."""
+
+    impact_location: list[float]  # [m from pivot]
+    exit_speed: list[float]  # [m/s]
+    metric: list[float]  # protocol metric at each location [-] or [m/s] for exit-speed
+
+
+@dataclass
+class ConditionResult:
+    name: str
+    setup: str  # "stationary-bat" | "stationary-ball" | "pitched-and-swung"
+    pitch_speed: float  # ball speed before impact [m/s], negative toward the bat
+    bat_angular_speed: float  # bat angular speed before impact about the pivot [rad/s]
+    relative_speed: float  # normal approach speed of ball and bat at the impact location [m/s]
+    impact_location: float  # [m from pivot]
+    exit_speed: float  # ball speed after impact [m/s], positive away from the bat
+    bat_angular_speed_after: float  # Smith 2001 Eq. 1 (pinned); free bat: its angular velocity [rad/s]
+    cor: float  # ball-bat coefficient of restitution, Smith 2001 Eq. 3 [-]
+    ball_cor: float  # the ball's rigid-wall COR at relative_speed [-]
+    bpf: float  # bat performance factor cor / ball_cor, Smith 2001 Eq. 5 [-]
+    besr: float  # NCAA ball exit speed ratio, Smith 2001 Eq. 2 [-]
+    bbcor: float  # ball-bat COR from collision efficiency, e_A (1 + k) + k [-]
+    collision_efficiency: float  # e_A = (v_b - v_bat) / (v_pitch + v_bat) [-]
+    metric_value: float  # the protocol metric at impact_location
+    cop: float  # centre of percussion, Smith 2001 Eq. 4 [m from pivot]
+    sweet_spot: float  # location of maximum exit speed within the window [m from pivot]
+    rigid_sweet_spot: float | None  # Smith 2001 Eq. 7 [m from pivot], None when undefined (w1 = 0)
+    at_window_edge: bool  # the located impact point lies on the search window's edge
+    sweep: Sweep
+    # the engine's diagnostics of the impact at impact_location (flexible engine: contact_time
+    # [s], peak_force [N], max_compression [m], vibrational_energy [J], e0 [-], separated, ...)
+    diagnostics: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass
+class MassProperties:
+    """Bat mass properties about the protocol pivot: model (reconciled) against measured."""
+
+    length: float  # [m]
+    pivot: float  # [m from knob]
+    mass: float  # [kg]
+    cg: float  # [m from pivot]
+    moi_pivot: float  # [kg m^2]
+    cop: float  # [m from pivot]
+    geometry_mass: float  # profile x material, before reconciliation [kg]
+    geometry_cg: float  # [m from pivot]
+    geometry_moi_pivot: float  # [kg m^2]
+    measured_mass: float | None  # [kg]
+    measured_cg: float | None  # [m from pivot]
+    measured_moi_pivot: float | None  # [kg m^2]
+    reconciliation: str  # one-line description of the correction applied
+    corrections: dict[str, float] = field(default_factory=dict)  # named correction values, SI
+    geometry_cop: float | None = None  # COP of the geometry-derived model [m from pivot]
+    measured_cop: float | None = None  # COP from the measured values (Eq. 4) [m from pivot]
+
+
+@dataclass
+class InputFile:
+    role: str  # "bat" | "protocol" | "ball"
+    name: str
+    path: str
+    sha256: str
+
+
+@dataclass
+class RunResult(Serialisable):
+    protocol: str  # protocol id
+    protocol_title: str
+    protocol_version: str
+    protocol_reference: str
+    protocol_notes: str
+    bat: str  # bat name
+    ball: str  # ball name
+    metric: str  # exit-speed | besr | bpf | bbcor | collision-efficiency
+    aggregate: str  # how conditions combine: mean | min | max
+    value: float  # aggregated metric
+    limit: float | None  # maximum allowed value, None when the protocol sets no limit
+    tolerance: float  # added to the limit before the verdict
+    margin: float | None  # limit + tolerance - value (positive passes), None without a limit
+    verdict: str | None  # "pass" | "fail" | None without a limit
+    impact_rule: str  # cop | sweet-spot | max-metric | fixed-from-tip
+    engine: str  # rigid | flexible
+    engine_settings: dict[str, Any]
+    support: str  # pinned | free
+    mass_properties: MassProperties
+    conditions: list[ConditionResult]
+    inputs: list[InputFile]
+    batcert_version: str
+    created: str  # ISO 8601 UTC timestamp
+    warnings: list[str] = field(default_factory=list)
+    extras: dict[str, Any] = field(default_factory=dict)  # engine diagnostics (modes, barrel)

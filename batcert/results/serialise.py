@@ -1,0 +1,61 @@
+"""One serialisation for every result type: dataclasses to JSON and back.
+
+Results are plain dataclasses in SI units. :class:`Serialisable` gives them ``to_dict`` /
+``to_json`` and a ``from_dict`` that rebuilds nested dataclasses (in lists, dicts and optional
+fields) from their type hints, so a saved results JSON re-renders without recomputing anything.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import sys
+import types
+import typing
+from typing import Any, TypeVar, Union, get_args, get_origin, get_type_hints
+
+T = TypeVar("T")
+
+
+def from_dict(cls: type[T], data: dict[str, Any]) -> T:
+    """Rebuild ``cls`` (a dataclass) from :func:`dataclasses.asdict` output; keys not among its
+    fields are ignored, missing ones take the field's default."""
+    hints = get_type_hints(cls, vars(sys.modules[cls.__module__]))
+    kw = {f.name: _convert(hints[f.name], data[f.name])
+          for f in dataclasses.fields(cls) if f.name in data}  # type: ignore[arg-type]
+    return cls(**kw)
+
+
+def _convert(tp: Any, value: Any) -> Any:
+    if value is None:
+        return None
+    origin = get_origin(tp)
+    if origin in (Union, types.UnionType):
+        options = [a for a in get_args(tp) if a is not type(None)]
+        for a in options:
+            if dataclasses.is_dataclass(a) and isinstance(value, dict):
+                return from_dict(a, value)  # type: ignore[arg-type]
+        return _convert(options[0], value) if len(options) == 1 else value
+    if dataclasses.is_dataclass(tp) and isinstance(value, dict):
+        return from_dict(tp, value)  # type: ignore[arg-type]
+    if origin is list:
+        (item,) = get_args(tp) or (Any,)
+        return [_convert(item, v) for v in value]
+    if origin is dict:
+        _, item = get_args(tp) or (Any, Any)
+        return {k: _convert(item, v) for k, v in value.items()}
+    return value
+
+
+class Serialisable:
+    """Mixin for result dataclasses: ``to_dict``, ``to_json`` and ``from_dict``."""
+
+    def to_dict(self) -> dict[str, Any]:
+        return dataclasses.asdict(typing.cast(Any, self))
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict(), indent=2, allow_nan=False)
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Any:
+        return from_dict(cls, data)

@@ -119,7 +119,7 @@ def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
         data = [r.to_dict() for r in results]
         console.print_json(data[0] if len(data) == 1 else data)
     else:
-        for r, paths in zip(results, written):
+        for r, paths in zip(results, written, strict=True):
             console.run_summary(r, paths)
     sys.exit(1 if any(r.verdict == "fail" for r in results) else 0)
 
@@ -197,7 +197,7 @@ def _show_ball(info: dict) -> None:
              f"{f / 1e3:.1f}"]
             for v, e, ct, cl, u, f in zip(info["speeds"], info["cor"], info["contact_time"],
                                           info["collision_time"], info["max_compression"],
-                                          info["peak_force"])]
+                                          info["peak_force"], strict=True)]
     console.table(Table(["speed [m/s]", "COR", "contact time [ms]", "99 % impulse [ms]",
                          "max compression [mm]", "peak force [kN]"], rows, [True] * 6),
                   "against a rigid wall")

@@ -20,11 +20,12 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "tests" / "engines"))
 
-from batcert.physics.modes import cached_modes, clear_mode_cache  # noqa: E402
-from batcert.engines import ImpactBatch  # noqa: E402
-from batcert.engines.flexible import FlexibleEngine  # noqa: E402
 from r161 import r161_bat  # noqa: E402
 from test_flexible import BALL, hollow_bat, reference_impact  # noqa: E402
+
+from batcert.engines import ImpactBatch  # noqa: E402
+from batcert.engines.flexible import FlexibleEngine  # noqa: E402
+from batcert.physics.modes import cached_modes, clear_mode_cache  # noqa: E402
 
 PIVOT = 0.15  # the study's pivot [m]
 REPEAT = 15

@@ -19,10 +19,11 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
 
+from r161 import r161_bat, solid_bat  # noqa: E402
+
+from batcert.physics.batmodel import Material  # noqa: E402
 from batcert.physics.modes import cached_modes, clear_mode_cache  # noqa: E402
 from batcert.physics.residual import residual_compliance  # noqa: E402
-from batcert.physics.batmodel import Material  # noqa: E402
-from r161 import r161_bat, solid_bat  # noqa: E402
 
 PIVOT = 0.1524  # [m]
 N_MODES = 24
@@ -63,15 +64,16 @@ def main() -> None:
     for name, bat in bats.items():
         for support in ("free", "pinned"):
             for refine in (1, 2, 4):
+                def solve(bat=bat, support=support, refine=refine):
+                    return cached_modes(bat, support, PIVOT, N_MODES, refine)
+
                 clear_mode_cache()
-                first = ms(lambda: cached_modes(bat, support, PIVOT, N_MODES, refine))
+                first = ms(solve)
                 cold = []
                 for _ in range(REPEAT):
                     clear_mode_cache()
-                    cold.append(ms(lambda: cached_modes(bat, support, PIVOT, N_MODES,
-                                                             refine)))
-                hit = [ms(lambda: cached_modes(bat, support, PIVOT, N_MODES, refine))
-                       for _ in range(REPEAT)]
+                    cold.append(ms(solve))
+                hit = [ms(solve) for _ in range(REPEAT)]
                 modes = cached_modes(bat, support, PIVOT, N_MODES, refine)
                 print(f"{name:20s} {support:8s} {refine:6d} {2 * modes.z.size:5d} "
                       f"{first:8.2f} {np.median(cold):8.2f} {np.median(hit):8.3f}  "

@@ -77,7 +77,7 @@ def differences(a: object, b: object, rtol: float, where: str = "") -> list[str]
     if isinstance(a, list) and isinstance(b, list):
         if len(a) != len(b):
             return [f"{where}: {len(a)} items saved, {len(b)} now"]
-        return [d for i, (x, y) in enumerate(zip(a, b)) for d in differences(x, y, rtol,
+        return [d for i, (x, y) in enumerate(zip(a, b, strict=True)) for d in differences(x, y, rtol,
                                                                               f"{where}[{i}]")]
     if isinstance(a, (int, float)) and isinstance(b, (int, float)) and not isinstance(a, bool):
         if math.isclose(a, b, rel_tol=rtol, abs_tol=rtol * 1e-3):

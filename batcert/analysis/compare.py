@@ -18,8 +18,15 @@ from typing import TYPE_CHECKING
 
 from batcert import __version__
 from batcert.analysis.claims import evaluate_claim, findings
-from batcert.results.compare import (BatCondition, BatEntry, BatMass, ComparisonResult,
-                                     ConditionComparison, ProtocolComparison, Spread)
+from batcert.results.compare import (
+    BatCondition,
+    BatEntry,
+    BatMass,
+    ComparisonResult,
+    ConditionComparison,
+    ProtocolComparison,
+    Spread,
+)
 from batcert.results.run import RunResult
 
 if TYPE_CHECKING:
@@ -42,7 +49,7 @@ def relative_performance(value: float, reference: float) -> float | None:
 def bat_labels(names: Sequence[str], paths: Sequence[str]) -> list[str]:
     """Unique labels: the bat's name, with its file name added where two names coincide."""
     out = []
-    for i, (n, p) in enumerate(zip(names, paths)):
+    for i, (n, p) in enumerate(zip(names, paths, strict=True)):
         label = n if list(names).count(n) == 1 else f"{n} [{p.rsplit('/', 1)[-1]}]"
         while label in out:
             label = f"{label} #{i + 1}"
@@ -70,7 +77,7 @@ def _protocol_comparison(runs: list[RunResult], labels: list[str], ref: int
     for k, name in enumerate(names):
         ref_value = runs[ref].conditions[k].metric_value
         bats = {}
-        for lab, r in zip(labels, runs):
+        for lab, r in zip(labels, runs, strict=True):
             c = r.conditions[k]
             p = relative_performance(c.metric_value, ref_value)
             per_bat_p[lab].append(p)
@@ -86,14 +93,14 @@ def _protocol_comparison(runs: list[RunResult], labels: list[str], ref: int
         version=first.protocol_version, metric=first.metric, impact_rule=first.impact_rule,
         aggregate=first.aggregate, pivot=first.mass_properties.pivot, ball=first.ball,
         limit=first.limit, conditions=conds,
-        aggregate_value={lab: r.value for lab, r in zip(labels, runs)},
+        aggregate_value={lab: r.value for lab, r in zip(labels, runs, strict=True)},
         aggregate_relative={lab: relative_performance(r.value, runs[ref].value)
-                            for lab, r in zip(labels, runs)},
+                            for lab, r in zip(labels, runs, strict=True)},
         relative_spread={lab: Spread.of(ps) for lab, ps in per_bat_p.items()},
-        verdicts={lab: r.verdict for lab, r in zip(labels, runs)},
+        verdicts={lab: r.verdict for lab, r in zip(labels, runs, strict=True)},
         mass={lab: BatMass(r.mass_properties.mass, r.mass_properties.cg,
                            r.mass_properties.moi_pivot, r.mass_properties.cop)
-              for lab, r in zip(labels, runs)})
+              for lab, r in zip(labels, runs, strict=True)})
 
 
 def compare(runs: Sequence[Sequence[RunResult]], reference: int = 0, *,
@@ -123,12 +130,12 @@ def compare(runs: Sequence[Sequence[RunResult]], reference: int = 0, *,
     if bats is None:
         names = [row[0].bat for row in runs]
         paths = [next((i.path for i in row[0].inputs if i.role == "bat"), n)
-                 for row, n in zip(runs, names)]
+                 for row, n in zip(runs, names, strict=True)]
         labels = bat_labels(names, paths)
         bats = [BatEntry(lab, row[0].bat, p, next((i.sha256 for i in row[0].inputs
                                                    if i.role == "bat"), ""),
                          row[0].mass_properties.length)
-                for lab, row, p in zip(labels, runs, paths)]
+                for lab, row, p in zip(labels, runs, paths, strict=True)]
     labels = [b.label for b in bats]
     if len(set(labels)) != len(labels):
         raise ValueError("bat labels must be unique")
@@ -136,7 +143,7 @@ def compare(runs: Sequence[Sequence[RunResult]], reference: int = 0, *,
                  for j in range(n_proto)]
     inputs: dict[tuple[str, str], dict[str, str]] = {}
     raised: dict[str, list[str]] = {}  # warning text -> bats whose runs raised it
-    for row, lab in zip(runs, labels):
+    for row, lab in zip(runs, labels, strict=True):
         for r in row:
             for i in r.inputs:
                 inputs.setdefault((i.path, i.sha256), asdict(i))

@@ -19,7 +19,6 @@ from typing import TYPE_CHECKING
 from batcert import __version__
 from batcert.results.league import BatLeagueResult, LeagueResult, RuleResult
 from batcert.results.run import RunResult
-from batcert.specs.schema import Kind, number, one_of, quantity
 from batcert.units import INCH, OUNCE
 
 if TYPE_CHECKING:
@@ -147,35 +146,33 @@ def _performance(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleResu
 
 @dataclass(frozen=True)
 class RuleKind:
-    """One kind of league rule: what it checks, how it reads ``limit``, what else it needs, the
-    unit of its value and limit in results, and its evaluation (None: cannot be evaluated)."""
+    """One kind of league rule: what it checks, what its ``limit`` is (``length``, ``number``,
+    ``metric``: a number, or a speed for an exit-speed protocol; None: no limit; the league
+    schema reads it accordingly), what else it needs, the unit of its value and limit in
+    results, and its evaluation (None: cannot be evaluated)."""
 
     name: str
     describe: str
-    limit: Kind | None
+    limit: str | None
     evaluate: Callable[[RuleSpec, BatFacts, RunResult | None], RuleResult] | None
     needs: tuple[str, ...] = ()  # other fields a modelled rule of this kind requires
     unit: str = ""  # "m", "kg m^2", "in - oz", "" ...
 
 
-_LENGTH = quantity("length", positive=True)
-_PERFORMANCE_LIMIT = one_of(number(), quantity("speed"), describe="a number, or a speed for an "
-                            "exit-speed protocol")
-
 RULE_KINDS: dict[str, RuleKind] = {k.name: k for k in (
-    RuleKind("max-length", "overall length at most `limit`", _LENGTH, _max_length, unit="m"),
+    RuleKind("max-length", "overall length at most `limit`", "length", _max_length, unit="m"),
     RuleKind("max-drop", "drop = length [in] - weight [oz] at most `limit` (a plain number; "
-             "BBCOR's -3 rule is `limit: 3`)", number(), _max_drop, unit="in - oz"),
-    RuleKind("max-barrel-diameter", "largest outer diameter at most `limit`", _LENGTH,
+             "BBCOR's -3 rule is `limit: 3`)", "number", _max_drop, unit="in - oz"),
+    RuleKind("max-barrel-diameter", "largest outer diameter at most `limit`", "length",
              _max_barrel, unit="m"),
-    RuleKind("min-diameter", "smallest outer diameter (the handle) at least `limit`", _LENGTH,
+    RuleKind("min-diameter", "smallest outer diameter (the handle) at least `limit`", "length",
              _min_diameter, unit="m"),
     RuleKind("construction", "construction must be `required` (solid or hollow)", None,
              _construction, ("required",)),
     RuleKind("material", "material must be one of `allowed` (library names or the classes wood, "
              "metal, composite)", None, _material, ("allowed",)),
     RuleKind("performance", "the protocol's aggregated metric at most `limit` + `tolerance`",
-             _PERFORMANCE_LIMIT, _performance, ("protocol",)),
+             "metric", _performance, ("protocol",)),
     RuleKind("other", "any other requirement (only with status: not-modelled)", None, None),
 )}
 

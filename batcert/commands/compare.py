@@ -4,8 +4,15 @@ side. Every input is loaded before anything runs."""
 from __future__ import annotations
 
 from batcert.analysis.compare import bat_labels, compare
-from batcert.commands.inputs import (LoadedBat, ProtocolInputs, load_bats, load_protocol_any,
-                                     load_study_any, protocol_inputs, same_file)
+from batcert.commands.inputs import (
+    LoadedBat,
+    ProtocolInputs,
+    load_bats,
+    load_protocol_any,
+    load_study_any,
+    protocol_inputs,
+    same_file,
+)
 from batcert.engines import get_engine
 from batcert.errors import UsageProblem
 from batcert.results.compare import BatEntry, ComparisonResult
@@ -59,7 +66,7 @@ def run_comparison(bats: list[str], protocols: list[str], study: str | None = No
     labels = bat_labels([b.built.spec.name for b in loaded], [str(b.path) for b in loaded])
     entries = [BatEntry(lab, b.built.spec.name, str(b.path), b.built.spec.sha256,
                         b.built.model.length, b.built.model.construction,
-                        b.built.model.material.name) for lab, b in zip(labels, loaded)]
+                        b.built.model.material.name) for lab, b in zip(labels, loaded, strict=True)]
     return compare(runs, ref, bats=entries, title=spec.title if spec else "",
                    study=spec.id if spec else None,
                    study_reference=spec.reference if spec else "",

@@ -44,7 +44,7 @@ def inspect_ball(ball: BallSpec, speeds=(1.0, 11.0, 25.9, 45.0, 58.0, 60.0, 67.0
     wall = contact.ball_wall_impact(b, np.asarray(speeds, dtype=float))
     return {"name": b.name, "file": ball.path, "sha256": ball.sha256, "mass": b.mass,
             "radius": b.radius, "contact_model": b.contact_model, "k1": b.k1, "alpha": b.alpha,
-            "cor_points": [list(p) for p in zip(b.cor_speeds, b.cor_values)],
+            "cor_points": [list(p) for p in zip(b.cor_speeds, b.cor_values, strict=True)],
             "speeds": list(map(float, speeds)), "cor": wall.cor.tolist(),
             "contact_time": wall.contact_time.tolist(),
             "collision_time": wall.collision_time.tolist(),

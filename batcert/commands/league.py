@@ -25,7 +25,7 @@ def run_league(league: str, bats: list[str], engine: str = "flexible") -> League
     needed = any(needs_run(r, f) for r in spec.rules for f in facts)
     eng = get_engine(engine) if needed else None
     per_bat = []
-    for b, f in zip(loaded, facts):
+    for b, f in zip(loaded, facts, strict=True):
         runs: dict[str, RunResult] = {}
         cache: dict[tuple[str, str], RunResult] = {}
         for rule in spec.rules:

@@ -47,10 +47,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from batcert.engines.base import ImpactBatch, ImpactOutcome
 from batcert.physics import contact, rigid
 from batcert.physics.ball import BallModel
 from batcert.physics.batmodel import BatModel
-from batcert.engines.base import ImpactBatch, ImpactOutcome
 from batcert.physics.march import LinearSystem, Separation, march
 from batcert.physics.modes import Modes
 
@@ -181,22 +181,8 @@ class FlexibleEngine:
             Unknown support, impacts outside the bat or at the pivot, ball and bat not
             approaching, modes of another support or pivot.
         """
-        if support not in SUPPORTS:
-            raise ValueError(f"support must be one of {SUPPORTS}, got {support!r}")
-        r = batch.impact_location
-        z = pivot + r
-        lo, hi = float(bat.z_edges[0]), float(bat.z_edges[-1])
-        bad = ~((z >= lo) & (z <= hi))
-        if np.any(bad):
-            raise ValueError(f"impact location(s) {np.round(r[bad], 4).tolist()} m from the pivot "
-                             f"lie outside the bat ({lo - pivot:.4f} to {hi - pivot:.4f} m from "
-                             "the pivot)")
-        if np.any(np.abs(r) < _PIVOT_CLEARANCE):
-            raise ValueError("an impact at the pivot is not defined (the bat cannot recoil and "
-                             "Smith 2001 Eqs. 1 and 3 degenerate): keep impacts at least "
-                             f"{_PIVOT_CLEARANCE * 1e3:.0f} mm from the pivot")
-        if np.any(~(batch.relative_speed > 0)):
-            raise ValueError("ball and bat must approach each other: w1 r - v_p must be > 0")
+        _check_batch(bat, pivot, batch, support)
+        z = pivot + batch.impact_location
         if modes is None:
             from batcert.physics.modes import cached_modes
             modes = cached_modes(bat, support, pivot, self.n_modes, self.refine)
@@ -223,6 +209,10 @@ class FlexibleEngine:
         system = LinearSystem(omega=np.ascontiguousarray(omega), zeta=zeta,
                               gain=np.ascontiguousarray(gain), rigid_mass=rigid_mass,
                               ball_mass=ball.mass)
+        return self._add_barrel(system, extras, bat, z)
+
+    def _add_barrel(self, system: LinearSystem, extras: dict, bat: BatModel, z: np.ndarray):
+        """A hollow bat's hoop mode joined to each impact's system (module notes)."""
         from batcert.physics import barrel
         spring = barrel.barrel_spring_at(bat, z)
         if spring is None:
@@ -231,8 +221,9 @@ class FlexibleEngine:
         k_h, m_h = np.where(has, spring[0], 0.0), np.where(has, spring[1], 0.0)
         om_h = np.sqrt(k_h / np.where(has, m_h, 1.0))
         extras.update(barrel_stiffness=k_h, barrel_mass=m_h, barrel_omega=om_h)
+        gain, rigid_mass = system.gain, system.rigid_mass
         n, k = gain.shape
-        omega, readout = _column(omega, np.where(has, om_h, 1.0)), np.zeros((n, k + 1))
+        omega, readout = _column(system.omega, np.where(has, om_h, 1.0)), np.zeros((n, k + 1))
         if self.barrel_model == "modal":  # the hoop is one more mode: contact at y - s
             gain = _column(gain, np.where(has, -1.0 / np.sqrt(np.where(has, m_h, 1.0)), 0.0))
             readout[:, -1] = -gain[:, -1]
@@ -309,6 +300,27 @@ class FlexibleEngine:
 
 
 
+def _check_batch(bat: BatModel, pivot: float, batch: ImpactBatch, support: str) -> None:
+    """Refuse what the engine cannot solve: an unknown support, impacts off the bat or at the
+    pivot, ball and bat not approaching."""
+    if support not in SUPPORTS:
+        raise ValueError(f"support must be one of {SUPPORTS}, got {support!r}")
+    r = batch.impact_location
+    z = pivot + r
+    lo, hi = float(bat.z_edges[0]), float(bat.z_edges[-1])
+    bad = ~((z >= lo) & (z <= hi))
+    if np.any(bad):
+        raise ValueError(f"impact location(s) {np.round(r[bad], 4).tolist()} m from the pivot "
+                         f"lie outside the bat ({lo - pivot:.4f} to {hi - pivot:.4f} m from "
+                         "the pivot)")
+    if np.any(np.abs(r) < _PIVOT_CLEARANCE):
+        raise ValueError("an impact at the pivot is not defined (the bat cannot recoil and "
+                         "Smith 2001 Eqs. 1 and 3 degenerate): keep impacts at least "
+                         f"{_PIVOT_CLEARANCE * 1e3:.0f} mm from the pivot")
+    if np.any(~(batch.relative_speed > 0)):
+        raise ValueError("ball and bat must approach each other: w1 r - v_p must be > 0")
+
+
 def _column(a, col):
     """``a`` (n, k) with ``col`` (n,) appended as a last column."""
     return np.concatenate([a, np.asarray(col, dtype=float)[:, None]], axis=1)
@@ -329,6 +341,7 @@ def _states(system: LinearSystem, extras: dict, sep: Separation, q, p, pivot, v_
         beam_q, beam_p = (np.einsum("njk,nk->nj", shapes[:, 1:k + 1], x) for x in (q, p))
         yr_dot = v_rigid + np.einsum("nk,nk->n", shapes[:, 0], p)
         w_dot = v_rigid + np.einsum("nk,nk->n", shapes[:, -1], p)
+        assert system.barrel_readout is not None  # a series barrel always has its read-out
         s = np.einsum("nk,nk->n", system.barrel_readout, q)
         m_h = extras["barrel_mass"]
         out["barrel_energy"] = 0.5 * (m_h * w_dot**2 + k_h * s**2)

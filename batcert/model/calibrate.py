@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from batcert.physics.batmodel import BatModel
 from batcert.errors import ModelError
+from batcert.physics.batmodel import BatModel
 
 STIFFNESS_SCALE_BOUNDS = (0.25, 4.0)
 

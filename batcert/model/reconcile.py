@@ -100,7 +100,7 @@ def reconcile(bat: BatModel, meas: MeasuredMassProperties | None, method: str = 
     basis = [np.ones_like(s), s, s**2][:n_eq]
     a = np.stack([_moments(bat, b, meas.pivot)[:n_eq] for b in basis], axis=1)
     coef = np.linalg.solve(a, target)
-    weight = sum(c * b for c, b in zip(coef, basis))
+    weight = sum(c * b for c, b in zip(coef, basis, strict=True))
     lo, hi = float(weight.min()), float(weight.max())
     if lo < WEIGHT_BOUNDS[0] or hi > WEIGHT_BOUNDS[1]:
         raise ModelError("measured", f"cannot reconcile: matching the measured mass properties "

@@ -171,6 +171,46 @@ def _coefficients(system: LinearSystem, h: float, alpha: float, beta) -> _Coeffi
         R=np.ascontiguousarray(np.stack(rows, axis=1)), beta=beta, ab=alpha - beta, kh=kh)
 
 
+def _step(st: _State, c: _Coefficients, h: float, force,
+          barrel_law: tuple[float, float] | None) -> np.ndarray:
+    """Advance every impact by one ETDRK4 step in place; return the compression at its end.
+
+    ``barrel_law`` is ``(k1, alpha)`` when the barrel's energy share is tracked, else None.
+    """
+    base = np.matmul(c.R, st.z.view(float)[:, :, None])[:, :, 0]
+    u2 = base[:, 0] + st.w + 0.5 * h * st.v
+    u1 = base[:, 1] + st.w + h * st.v
+    du = st.v + base[:, 2]
+    turned = (st.du_prev > 0) & (du <= 0) & (st.u > 0)
+    if turned.any():  # the maximum compression fell inside the last step: refine u_top
+        st.u_top[turned] = np.maximum(st.u_top[turned], _hermite_max(
+            st.u_prev[turned], st.du_prev[turned], st.u[turned], du[turned], h))
+    st.u_prev, st.du_prev = st.u, du
+    l_top = np.log(st.u_top)
+    f0 = force(st.u, l_top)
+    if barrel_law is not None:  # the barrel's share of the stored energy when the total peaks
+        k1, alpha = barrel_law
+        stored = contact.deformation_work(st.u, st.u_top, k1, alpha, c.beta)
+        barrel = 0.5 * c.kh * base[:, 3] ** 2
+        up = stored + barrel > st.e_peak
+        st.e_peak = np.where(up, stored + barrel, st.e_peak)
+        st.share = np.where(up, barrel / np.where(up, stored + barrel, 1.0), st.share)
+    fa = force(u2 + c.ka * f0, l_top)
+    fb = force(u2 + c.ka * fa + c.b0 * f0, l_top)
+    fc = force(u1 + c.c0 * f0 + c.cb * fb + c.ca * fa, l_top)
+    fab = fa + fb
+    f_vec = np.stack([f0, fab, fc], axis=1)[:, None, :]
+    st.z = c.e1 * st.z + np.matmul(f_vec, c.B)[:, 0, :].view(complex)
+    u_new = u1 + c.n0 * f0 + c.n1 * fab + c.n2 * fc
+    s4 = f0 + 2.0 * fab + fc
+    st.w = st.w + h * st.v + c.w6 * (f0 + fab)
+    st.v = st.v + c.v6 * s4
+    st.impulse = st.impulse + (h / 6.0) * s4
+    st.f_peak = np.maximum(st.f_peak, f0)
+    st.u_top = np.maximum(st.u_top, u_new)
+    return u_new
+
+
 def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, time_step: float,
           max_time: float) -> Separation:
     """Integrate all impacts from first touch to separation (ETDRK4; module notes).
@@ -211,7 +251,6 @@ def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, t
 
     st = _State.start(n, k_modes, approach_speed)
     live = np.ones(n, dtype=bool)
-    f_vec = np.empty((n, 1, 3))
     out = Separation(impulse=np.zeros(n), time=np.full(n, np.nan), separated=np.zeros(n, bool),
                      peak_force=np.zeros(n), max_compression=np.zeros(n),
                      modal=np.zeros((n, k_modes), dtype=complex),
@@ -227,36 +266,7 @@ def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, t
 
     t = 0.0
     for _ in range(int(np.ceil(max_time / h))):
-        base = np.matmul(c.R, st.z.view(float)[:, :, None])[:, :, 0]
-        u2 = base[:, 0] + st.w + 0.5 * h * st.v
-        u1 = base[:, 1] + st.w + h * st.v
-        du = st.v + base[:, 2]
-        turned = (st.du_prev > 0) & (du <= 0) & (st.u > 0)
-        if turned.any():  # the maximum compression fell inside the last step: refine u_top
-            st.u_top[turned] = np.maximum(st.u_top[turned], _hermite_max(
-                st.u_prev[turned], st.du_prev[turned], st.u[turned], du[turned], h))
-        st.u_prev, st.du_prev = st.u, du
-        l_top = np.log(st.u_top)
-        f0 = force(st.u, l_top)
-        if hollow:  # the barrel's share of the stored energy when the total peaks
-            stored = contact.deformation_work(st.u, st.u_top, k1, alpha, c.beta)
-            barrel = 0.5 * c.kh * base[:, 3] ** 2
-            up = stored + barrel > st.e_peak
-            st.e_peak = np.where(up, stored + barrel, st.e_peak)
-            st.share = np.where(up, barrel / np.where(up, stored + barrel, 1.0), st.share)
-        fa = force(u2 + c.ka * f0, l_top)
-        fb = force(u2 + c.ka * fa + c.b0 * f0, l_top)
-        fc = force(u1 + c.c0 * f0 + c.cb * fb + c.ca * fa, l_top)
-        fab = fa + fb
-        f_vec[:, 0, 0], f_vec[:, 0, 1], f_vec[:, 0, 2] = f0, fab, fc
-        st.z = c.e1 * st.z + np.matmul(f_vec, c.B)[:, 0, :].view(complex)
-        u_new = u1 + c.n0 * f0 + c.n1 * fab + c.n2 * fc
-        s4 = f0 + 2.0 * fab + fc
-        st.w = st.w + h * st.v + c.w6 * (f0 + fab)
-        st.v = st.v + c.v6 * s4
-        st.impulse = st.impulse + (h / 6.0) * s4
-        st.f_peak = np.maximum(st.f_peak, f0)
-        st.u_top = np.maximum(st.u_top, u_new)
+        u_new = _step(st, c, h, force, (k1, alpha) if hollow else None)
         t += h
         done = (u_new <= 0.0) & (st.u > 0.0)  # separation; finished rows are parked at u = -1 m
         if done.any():
@@ -272,7 +282,6 @@ def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, t
                 keep = np.flatnonzero(live)
                 st.u = u_new
                 st, c, live = st.take(keep), c.take(keep), live[keep]
-                f_vec = np.empty((keep.size, 1, 3))
                 continue
         st.u = u_new
     out.time[record(live)] = t  # the time cap came first: report that state, flagged

@@ -12,7 +12,7 @@ import scipy.linalg
 import scipy.sparse.linalg
 
 from batcert.physics.batmodel import BatModel
-from batcert.physics.beam import N_RIGID, check_support, free_dofs, rigid_modes, assemble, mesh_nodes
+from batcert.physics.beam import N_RIGID, assemble, check_support, free_dofs, mesh_nodes, rigid_modes
 
 
 @dataclass(frozen=True)

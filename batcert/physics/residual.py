@@ -8,12 +8,13 @@ Sec. 11.3).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.sparse.linalg
 
 from batcert.physics.batmodel import BatModel
-from batcert.physics.beam import check_support, free_dofs, rigid_modes, assemble
+from batcert.physics.beam import assemble, check_support, free_dofs, rigid_modes
 from batcert.physics.modes import Modes
 
 
@@ -102,9 +103,9 @@ class _Flexibility:
     z: np.ndarray  # mesh nodes [m]
     keep: np.ndarray  # retained DOFs
     rigid: np.ndarray  # rigid modes on the retained DOFs
-    m: object  # mass matrix on the retained DOFs (sparse)
+    m: Any  # mass matrix on the retained DOFs (sparse)
     solve: np.ndarray  # DOFs solved for (determinate supports removed)
-    lu: object  # sparse LU of the stiffness on `solve`
+    lu: Any  # sparse LU of the stiffness on `solve` (scipy SuperLU)
 
 
 _FLEX_CACHE: dict = {}

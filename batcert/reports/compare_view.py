@@ -44,14 +44,14 @@ def _charts(result: ComparisonResult, p: ProtocolComparison) -> list[dict[str, A
     """The protocol's figures: metric per condition, P per condition, sweet spot and COP."""
     from markupsafe import Markup
 
-    from batcert.reports import svg
+    from batcert.reports import charts, svg
     labels, compared = [b.label for b in result.bats], result.compared
     metric = fmt.metric_word(p.metric)
     cats = [c.name for c in p.conditions]
     width = chart_width(cats, len(labels), least=500)  # two charts side by side
     out = []
     unit = " [m/s]" if p.metric == "exit-speed" else " [-]"
-    out.append({"svg": Markup(svg.bar_chart(
+    out.append({"svg": Markup(charts.bar_chart(
         cats, [svg.BarSeries(lab, [c.bats[lab].value for c in p.conditions]) for lab in labels],
         title=f"{metric} per condition", y_label=metric + unit, limit=p.limit,
         value_format="{:.2f}" if p.metric == "exit-speed" else "{:.3f}", width=width)),
@@ -61,7 +61,7 @@ def _charts(result: ComparisonResult, p: ProtocolComparison) -> list[dict[str, A
     pcts = [svg.BarSeries(lab, [_pct_for_chart(c.bats[lab].relative) for c in p.conditions])
             for lab in compared]
     if any(v for s in pcts for v in s.values):
-        out.append({"svg": Markup(svg.bar_chart(
+        out.append({"svg": Markup(charts.bar_chart(
             cats, pcts, title=f"P against {result.reference}", y_label="P [%]",
             value_format="{:+.2f}", width=width)),
             "caption": f"Relative performance P of each bat against the reference bat "
@@ -75,7 +75,7 @@ def _charts(result: ComparisonResult, p: ProtocolComparison) -> list[dict[str, A
     edge_text = (f" In {edge} of {len(p.conditions) * len(labels)} bat-conditions the sweet spot "
                  "lies on the search window's edge: the bar shows the edge, not a located "
                  "maximum." if edge else "")
-    out.append({"svg": Markup(svg.bar_chart(
+    out.append({"svg": Markup(charts.bar_chart(
         cats, spots, title="Sweet spot and centre of percussion per condition",
         y_label="distance from the pivot [m]", value_format="{:.3f}", baseline=None,
         width=chart_width(cats, 2 * len(labels)))),
@@ -134,7 +134,6 @@ def _locations(result: ComparisonResult, p: ProtocolComparison) -> Table:
 
 def _protocol_view(result: ComparisonResult, p: ProtocolComparison,
                    charts: bool) -> dict[str, Any]:
-    from batcert.reports.write import slugify
     labels, compared = [b.label for b in result.bats], result.compared
     metric = fmt.metric_word(p.metric)
     show_setup = any(c.setup != c.name for c in p.conditions)
@@ -146,7 +145,7 @@ def _protocol_view(result: ComparisonResult, p: ProtocolComparison,
                            badge(VERDICT_BADGES, p.verdicts[lab])) for lab in labels]}
     n = len(p.conditions)
     return {
-        "id": p.protocol, "title": p.title, "anchor": "protocol-" + slugify(p.protocol),
+        "id": p.protocol, "title": p.title, "anchor": "protocol-" + fmt.slugify(p.protocol),
         "metric": metric, "labels": labels, "compared": compared, "show_setup": show_setup,
         "facts": [("Metric", f"{metric}, {fmt.aggregate_word(p.aggregate)} over {n} "
                              f"condition{'s' if n != 1 else ''}"),
@@ -183,10 +182,10 @@ def _overview(result: ComparisonResult, charts: bool) -> dict[str, Any]:
     if charts and any(v for s in series_values for v in s):
         from markupsafe import Markup
 
-        from batcert.reports import svg
+        from batcert.reports import charts, svg
         cats = [p.protocol for p in result.protocols]
-        chart = Markup(svg.bar_chart(cats, [svg.BarSeries(lab, vals) for lab, vals in
-                                            zip(compared, series_values)],
+        chart = Markup(charts.bar_chart(cats, [svg.BarSeries(lab, vals) for lab, vals in
+                                            zip(compared, series_values, strict=True)],
                                      title=f"Mean P against {result.reference}",
                                      y_label="mean P [%]", value_format="{:+.2f}",
                                      width=chart_width(cats, len(compared))))

@@ -2,12 +2,14 @@
 
 Formatters return a :class:`~batcert.units.Display` (SI text with the US customary equivalent,
 shown below it in HTML and in brackets as plain text) or plain text. Metric names, decimals and
-units come from the metric registry (:data:`batcert.runner.metrics.METRICS`); impact-rule and
+units come from the metric registry (:data:`batcert.methods.metrics.METRICS`); impact-rule and
 aggregate words from theirs. Nothing here computes physics.
 """
 
 from __future__ import annotations
 
+import re
+import unicodedata
 from collections.abc import Iterator
 from datetime import datetime
 from typing import Any
@@ -32,7 +34,7 @@ def _nz(v: float) -> float:
 
 def metric_word(metric: str) -> str:
     """The metric's display word ("BBCOR", "exit speed")."""
-    from batcert.runner.metrics import METRICS
+    from batcert.methods.metrics import METRICS
     return METRICS[metric].display if metric in METRICS else metric
 
 
@@ -44,13 +46,13 @@ def metric_name(metric: str) -> str:
 
 def rule_word(rule: str) -> str:
     """The impact-location rule's display words ("centre of percussion")."""
-    from batcert.runner.rules import IMPACT_RULES
+    from batcert.methods.rules import IMPACT_RULES
     return IMPACT_RULES[rule].display if rule in IMPACT_RULES else rule
 
 
 def aggregate_word(aggregate: str) -> str:
     """The aggregate's display word ("mean", "maximum")."""
-    from batcert.runner.metrics import AGGREGATES
+    from batcert.methods.metrics import AGGREGATES
     return AGGREGATES[aggregate].display if aggregate in AGGREGATES else aggregate
 
 
@@ -60,7 +62,7 @@ def aggregate_word(aggregate: str) -> str:
 def metric_value(value: float | None, metric: str, signed_: bool = False) -> Display:
     """A protocol metric value: exit speed in m/s with mph, other metrics dimensionless, with
     the metric's registered number of decimals."""
-    from batcert.runner.metrics import METRICS
+    from batcert.methods.metrics import METRICS
     if value is None:
         return Display(DASH, None)
     sign = "+" if signed_ else ""
@@ -195,3 +197,10 @@ def paragraphs(text: str | None) -> list[str]:
 
 def one_line(text: str | None) -> str:
     return " ".join((text or "").split())
+
+
+def slugify(text: str, fallback: str = "report") -> str:
+    """``"Ash 34 in (R161)"`` -> ``"ash-34-in-r161"``: ASCII, lower case, safe in file names."""
+    ascii_text = unicodedata.normalize("NFKD", text).encode("ascii", "ignore").decode("ascii")
+    slug = re.sub(r"[^a-z0-9]+", "-", ascii_text.lower()).strip("-")
+    return slug or fallback

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from batcert.reports import svg
+from batcert.reports import charts, svg
 from batcert.reports.format import metric_name
 from batcert.reports.table import Badge
 from batcert.reports.templates import render_template
@@ -48,7 +48,7 @@ def exit_speed_chart(result: RunResult) -> str:
               for c in result.conditions]
     points = [svg.Point(c.impact_location, c.exit_speed, i)
               for i, c in enumerate(result.conditions)]
-    return svg.line_chart(
+    return charts.line_chart(
         series,
         title="Exit speed against impact location",
         x_label=X_LABEL,
@@ -67,7 +67,7 @@ def metric_chart(result: RunResult) -> str:
               for c in result.conditions]
     points = [svg.Point(c.impact_location, c.metric_value, i)
               for i, c in enumerate(result.conditions)]
-    return svg.line_chart(
+    return charts.line_chart(
         series,
         title=f"{name} against impact location",
         x_label=X_LABEL,

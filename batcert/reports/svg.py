@@ -1,4 +1,6 @@
-"""Hand-written SVG charts for reports: a line chart and a grouped bar chart.
+"""Hand-written SVG for report charts: data types, palette, ticks, a canvas and axes.
+
+The charts themselves (a line chart, a grouped bar chart) are in :mod:`batcert.reports.charts`.
 
 Pure functions that return an SVG document as a string (no matplotlib: it would dominate start-up
 time). The SVG has a ``viewBox`` so it scales to the width of its container, uses no element ids
@@ -14,6 +16,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from html import escape
+from itertools import pairwise
 
 # Okabe & Ito (2008) colour-blind-safe palette, yellow left out (too pale on white).
 PALETTE = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000")
@@ -120,7 +123,7 @@ def tick_labels(ticks: Sequence[float]) -> list[str]:
     """Format ticks with just enough decimals to tell them apart (minus sign, not hyphen)."""
     if len(ticks) < 2:
         return [_num(t, 3) for t in ticks]
-    step = min(abs(b - a) for a, b in zip(ticks, ticks[1:], strict=False))
+    step = min(abs(b - a) for a, b in pairwise(ticks))
     decimals = max(0, -math.floor(math.log10(step) + 1e-9)) if step > 0 else 3
     if step > 0 and abs(round(step / 10.0**-decimals, 6) % 1) > 1e-6:
         decimals += 1  # steps such as 0.25
@@ -132,15 +135,15 @@ def _num(v: float, decimals: int) -> str:
     return "\u2212" + text[1:] if text.startswith("-") and float(v) != 0 else text.lstrip("-")
 
 
-def _text_w(text: str, size: float) -> float:
+def text_width(text: str, size: float) -> float:
     return len(text) * size * _CHAR_W
 
 
-def _f(v: float) -> str:
+def fmt_xy(v: float) -> str:
     return f"{v:.1f}"
 
 
-class _Canvas:
+class Canvas:
     """Collects SVG elements; all text goes through :func:`html.escape`."""
 
     def __init__(self, width: int, height: int, title: str):
@@ -155,10 +158,10 @@ class _Canvas:
 
     def text(self, x: float, y: float, text: str, *, size: float = 12, anchor: str = "start",
              fill: str = INK, weight: str = "normal", rotate: float | None = None) -> None:
-        transform = f' transform="rotate({rotate:g} {_f(x)} {_f(y)})"' if rotate else ""
+        transform = f' transform="rotate({rotate:g} {fmt_xy(x)} {fmt_xy(y)})"' if rotate else ""
         bold = ' font-weight="bold"' if weight != "normal" else ""
         self.parts.append(
-            f'<text x="{_f(x)}" y="{_f(y)}" font-size="{size:g}" text-anchor="{anchor}" '
+            f'<text x="{fmt_xy(x)}" y="{fmt_xy(y)}" font-size="{size:g}" text-anchor="{anchor}" '
             f'fill="{fill}"{bold}{transform}>{escape(text)}</text>'
         )
 
@@ -166,7 +169,7 @@ class _Canvas:
              width: float = 1.0, dasharray: str = "") -> None:
         d = f' stroke-dasharray="{dasharray}"' if dasharray else ""
         self.parts.append(
-            f'<line x1="{_f(x1)}" y1="{_f(y1)}" x2="{_f(x2)}" y2="{_f(y2)}" stroke="{stroke}" '
+            f'<line x1="{fmt_xy(x1)}" y1="{fmt_xy(y1)}" x2="{fmt_xy(x2)}" y2="{fmt_xy(y2)}" stroke="{stroke}" '
             f'stroke-width="{width:g}"{d}/>'
         )
 
@@ -176,18 +179,18 @@ class _Canvas:
     def legend(self, items: Sequence[tuple[str, str, str, str]], left: float, top: float,
                max_width: float) -> None:
         """Draw (name, colour, dash, kind) items in wrapping rows."""
-        offsets, _ = _legend_layout([item[0] for item in items], max_width)
+        offsets, _ = legend_layout([item[0] for item in items], max_width)
         for (name, col, dsh, kind), (dx, dy) in zip(items, offsets, strict=True):
             x, cy = left + dx, top + dy + 9
             if kind == "bar":
-                self.raw(f'<rect x="{_f(x)}" y="{_f(cy - 6)}" width="22" height="12" '
+                self.raw(f'<rect x="{fmt_xy(x)}" y="{fmt_xy(cy - 6)}" width="22" height="12" '
                          f'fill="{col}"/>')
             elif kind == "point":
-                self.raw(f'<circle cx="{_f(x + 11)}" cy="{_f(cy)}" r="4.5" fill="#ffffff" '
+                self.raw(f'<circle cx="{fmt_xy(x + 11)}" cy="{fmt_xy(cy)}" r="4.5" fill="#ffffff" '
                          f'stroke="{col}" stroke-width="2"/>')
             else:
                 d = f' stroke-dasharray="{dsh}"' if dsh else ""
-                self.raw(f'<line x1="{_f(x)}" y1="{_f(cy)}" x2="{_f(x + 22)}" y2="{_f(cy)}" '
+                self.raw(f'<line x1="{fmt_xy(x)}" y1="{fmt_xy(cy)}" x2="{fmt_xy(x + 22)}" y2="{fmt_xy(cy)}" '
                          f'stroke="{col}" stroke-width="2.5"{d}/>')
             self.text(x + 28, cy + 4, name)
 
@@ -195,12 +198,12 @@ class _Canvas:
         return "\n".join(self.parts + ["</svg>"])
 
 
-def _legend_layout(names: Sequence[str], max_width: float) -> tuple[list[tuple[float, float]],
+def legend_layout(names: Sequence[str], max_width: float) -> tuple[list[tuple[float, float]],
                                                                    float]:
     """Offsets of legend items flowing in rows of ``max_width``, and the legend's height."""
     x, y, row_h, out = 0.0, 0.0, 18.0, []
     for name in names:
-        w = 30 + _text_w(name, 12) + 16
+        w = 30 + text_width(name, 12) + 16
         if x > 0 and x + w > max_width:
             x, y = 0.0, y + row_h
         out.append((x, y))
@@ -208,97 +211,18 @@ def _legend_layout(names: Sequence[str], max_width: float) -> tuple[list[tuple[f
     return out, (y + row_h if names else 0.0)
 
 
-def _finite(values: Sequence[float | None]) -> list[float]:
+def finite(values: Sequence[float | None]) -> list[float]:
     return [float(v) for v in values if v is not None and math.isfinite(v)]
 
 
-def line_chart(
-    series: Sequence[Series],
-    *,
-    title: str = "",
-    x_label: str = "",
-    y_label: str = "",
-    vlines: Sequence[VLine] = (),
-    points: Sequence[Point] = (),
-    point_legend: str = "",
-    y2: SecondaryAxis | None = None,
-    x_range: tuple[float, float] | None = None,
-    y_range: tuple[float, float] | None = None,
-    width: int = 640,
-    height: int = 360,
-) -> str:
-    """A line chart of several series with axes, ticks, legend and labelled vertical markers.
-
-    ``x_range``/``y_range`` fix the axes (data outside is not drawn); otherwise the x axis fits the
-    data and the y axis is padded out to round ticks. ``point_legend`` names the circles drawn
-    for ``points`` in the legend (left out when empty).
-    """
-    xs = _finite([v for s in series for v in s.x]) + _finite([m.x for m in vlines])
-    ys = _finite([v for s in series for v in s.y]) + _finite([p.y for p in points])
-    x_lo, x_hi = x_range or ((min(xs), max(xs)) if xs else (0.0, 1.0))
-    if x_lo == x_hi:
-        x_lo, x_hi = x_lo - 0.5, x_hi + 0.5
-    y_lo, y_hi = y_range or (nice_domain(min(ys), max(ys)) if ys else (0.0, 1.0))
-
-    left, right = 66.0, (66.0 if y2 else 18.0)
-    plot_w = width - left - right
-    legend_names = [s.name for s in series] + ([point_legend] if point_legend and points else [])
-    title_h = 26.0 if title else 8.0
-    legend_h = _legend_layout(legend_names, plot_w)[1]
-    label_rows = _marker_rows(vlines, x_lo, x_hi, left, plot_w)
-    n_label_rows = 1 + max((r for r, _ in label_rows), default=-1)
-    top = title_h + legend_h + 6 + 14 * n_label_rows
-    bottom = 46.0
-    plot_h = height - top - bottom
-
-    def px(x: float) -> float:
-        return left + (x - x_lo) / (x_hi - x_lo) * plot_w
-
-    def py(y: float) -> float:
-        return top + plot_h - (y - y_lo) / (y_hi - y_lo) * plot_h
-
-    c = _Canvas(width, height, title or y_label)
-    if title:
-        c.text(left, 18, title, size=14, weight="bold")
-    c.legend([(s.name, color(i), dash(i), "line") for i, s in enumerate(series)]
-             + ([(point_legend, INK, "", "point")] if point_legend and points else []),
-             left, title_h, plot_w)
-    _axes(c, left, top, plot_w, plot_h, (x_lo, x_hi), (y_lo, y_hi), x_label, y_label, y2)
-
-    for (row, anchor), m in zip(label_rows, vlines, strict=True):
-        if not (x_lo <= m.x <= x_hi):
-            continue
-        x = px(m.x)
-        c.line(x, top, x, top + plot_h, stroke=m.color, width=1.2, dasharray="4 3")
-        c.text(x, top - 4 - 14 * (n_label_rows - 1 - row), m.label, size=11, anchor=anchor,
-               fill=m.color)
-
-    for i, s in enumerate(series):
-        for run in _runs(s.x, s.y, (x_lo, x_hi), (y_lo, y_hi)):
-            pts = " ".join(f"{_f(px(x))},{_f(py(y))}" for x, y in run)
-            d = f' stroke-dasharray="{dash(i)}"' if dash(i) else ""
-            c.raw(f'<polyline points="{pts}" fill="none" stroke="{color(i)}" stroke-width="2.2" '
-                  f'stroke-linejoin="round"{d}/>')
-            if len(run) == 1:  # a lone point draws no line: mark it so it is not lost
-                x, y = run[0]
-                c.raw(f'<circle cx="{_f(px(x))}" cy="{_f(py(y))}" r="2.5" fill="{color(i)}"/>')
-    for p in points:
-        if x_lo <= p.x <= x_hi and y_lo <= p.y <= y_hi:
-            c.raw(f'<circle cx="{_f(px(p.x))}" cy="{_f(py(p.y))}" r="4.5" fill="#ffffff" '
-                  f'stroke="{color(p.series)}" stroke-width="2"/>')
-            if p.label:
-                c.text(px(p.x) + 7, py(p.y) - 7, p.label, size=10, fill=color(p.series))
-    return c.done()
-
-
-def _marker_rows(vlines: Sequence[VLine], lo: float, hi: float, left: float,
+def marker_rows(vlines: Sequence[VLine], lo: float, hi: float, left: float,
                  plot_w: float) -> list[tuple[int, str]]:
     """Stack marker labels in rows so that neighbouring labels do not overlap."""
     ends: list[float] = []  # right edge of the last label in each row
     out: list[tuple[int, str]] = []
     for m in vlines:
         x = left + (m.x - lo) / (hi - lo) * plot_w if hi > lo else left
-        w = _text_w(m.label, 11)
+        w = text_width(m.label, 11)
         anchor = "end" if x + w / 2 > left + plot_w else "start" if x - w / 2 < left else "middle"
         start = x - w if anchor == "end" else x if anchor == "start" else x - w / 2
         row = next((r for r, e in enumerate(ends) if start > e + 6), len(ends))
@@ -309,10 +233,10 @@ def _marker_rows(vlines: Sequence[VLine], lo: float, hi: float, left: float,
     return out
 
 
-def _runs(xs: Sequence[float], ys: Sequence[float], xr: tuple[float, float],
+def runs(xs: Sequence[float], ys: Sequence[float], xr: tuple[float, float],
           yr: tuple[float, float]) -> list[list[tuple[float, float]]]:
     runs: list[list[tuple[float, float]]] = [[]]
-    for x, y in zip(xs, ys, strict=False):
+    for x, y in zip(xs, ys, strict=True):
         ok = (x is not None and y is not None and math.isfinite(x) and math.isfinite(y)
               and xr[0] <= x <= xr[1] and yr[0] <= y <= yr[1])
         if ok:
@@ -322,7 +246,7 @@ def _runs(xs: Sequence[float], ys: Sequence[float], xr: tuple[float, float],
     return [r for r in runs if r]
 
 
-def _axes(c: _Canvas, left: float, top: float, w: float, h: float, xr: tuple[float, float],
+def axes(c: Canvas, left: float, top: float, w: float, h: float, xr: tuple[float, float],
           yr: tuple[float, float], x_label: str, y_label: str,
           y2: SecondaryAxis | None, x_ticks: bool = True) -> None:
     """Grid, frame, ticks and axis titles of a plot area."""
@@ -338,7 +262,7 @@ def _axes(c: _Canvas, left: float, top: float, w: float, h: float, xr: tuple[flo
             c.line(x, top, x, top + h, stroke=GRID, width=0.8)
             c.line(x, top + h, x, top + h + 4, stroke=INK)
             c.text(x, top + h + 17, lab, size=11, anchor="middle", fill=MUTED)
-    c.raw(f'<rect x="{_f(left)}" y="{_f(top)}" width="{_f(w)}" height="{_f(h)}" fill="none" '
+    c.raw(f'<rect x="{fmt_xy(left)}" y="{fmt_xy(top)}" width="{fmt_xy(w)}" height="{fmt_xy(h)}" fill="none" '
           f'stroke="{INK}" stroke-width="1"/>')
     if x_label:
         c.text(left + w / 2, top + h + 38, x_label, anchor="middle")
@@ -352,80 +276,3 @@ def _axes(c: _Canvas, left: float, top: float, w: float, h: float, xr: tuple[flo
             c.line(left + w, y, left + w + 4, y, stroke=INK)
             c.text(left + w + 7, y + 4, lab, size=11, fill=MUTED)
         c.text(c.width - 10, top + h / 2, y2.label, anchor="middle", rotate=90)
-
-
-def bar_chart(
-    categories: Sequence[str],
-    series: Sequence[BarSeries],
-    *,
-    title: str = "",
-    y_label: str = "",
-    limit: float | None = None,
-    limit_label: str = "limit",
-    value_format: str = "{:.3f}",
-    baseline: float | None = 0.0,
-    width: int = 640,
-    height: int = 360,
-) -> str:
-    """Grouped bars: one group per category, one bar per series, each labelled with its value.
-
-    ``limit`` draws a horizontal dashed line (e.g. a protocol's maximum). Bars grow from
-    ``baseline`` (zero by default, so bar lengths compare honestly); with ``baseline=None`` the
-    axis fits the values and bars grow from its bottom.
-    """
-    vals = _finite([v for s in series for v in s.values]) + _finite([limit])
-    lo, hi = (min(vals), max(vals)) if vals else (0.0, 1.0)
-    if baseline is not None:
-        lo, hi = min(lo, baseline), max(hi, baseline)
-    y_lo, y_hi = nice_domain(lo, hi, pad=0.08)
-    if baseline is not None and lo >= baseline:
-        y_lo = baseline
-    elif baseline is not None and hi <= baseline:  # elif: all values at the baseline keep y_hi
-        y_hi = baseline
-    base = baseline if baseline is not None else y_lo
-
-    left, right = 66.0, 18.0
-    plot_w = width - left - right
-    title_h = 26.0 if title else 8.0
-    legend_h = _legend_layout([s.name for s in series], plot_w)[1]
-    top, bottom = title_h + legend_h + 10, 40.0
-    plot_h = height - top - bottom
-
-    def py(y: float) -> float:
-        return top + plot_h - (y - y_lo) / (y_hi - y_lo) * plot_h
-
-    c = _Canvas(width, height, title or y_label)
-    if title:
-        c.text(left, 18, title, size=14, weight="bold")
-    c.legend([(s.name, color(i), "", "bar") for i, s in enumerate(series)], left, title_h, plot_w)
-    _axes(c, left, top, plot_w, plot_h, (0.0, 1.0), (y_lo, y_hi), "", y_label, None,
-          x_ticks=False)
-
-    n_cat, n_ser = max(len(categories), 1), max(len(series), 1)
-    group_w = plot_w / n_cat
-    bar_w = min(group_w * 0.8 / n_ser, 60.0)
-    for k, cat in enumerate(categories):
-        gx = left + k * group_w + (group_w - bar_w * n_ser) / 2
-        c.text(left + (k + 0.5) * group_w, top + plot_h + 17, cat, anchor="middle")
-        for i, s in enumerate(series):
-            v = s.values[k] if k < len(s.values) else None
-            if v is None or not math.isfinite(v):
-                continue
-            x = gx + i * bar_w
-            y0, y1 = sorted((py(base), py(v)))
-            c.raw(f'<rect x="{_f(x + 1)}" y="{_f(y0)}" width="{_f(bar_w - 2)}" '
-                  f'height="{_f(max(y1 - y0, 0.5))}" fill="{color(i)}"/>')
-            label = value_format.format(v)
-            up = v >= base
-            ty = py(v) - 4 if up else py(v) + 12
-            if _text_w(label, 10) > bar_w - 2:
-                c.text(x + bar_w / 2 + 3, py(v) - 4 if up else py(v) + 4, label, size=10,
-                       anchor="start" if up else "end", rotate=-90)
-            else:
-                c.text(x + bar_w / 2, ty, label, size=10, anchor="middle")
-    if limit is not None and math.isfinite(limit):
-        y = py(limit)
-        c.line(left, y, left + plot_w, y, stroke=INK, width=1.5, dasharray="8 4")
-        c.text(left + plot_w - 4, y - 5, f"{limit_label} {value_format.format(limit)}",
-               size=11, anchor="end")
-    return c.done()

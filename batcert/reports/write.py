@@ -11,13 +11,13 @@ from __future__ import annotations
 
 import hashlib
 import os
-import re
 import tempfile
-import unicodedata
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
+
+from batcert.reports.format import slugify
 
 SUFFIXES = {"md": ".md", "html": ".html", "json": ".json"}  # report formats and file suffixes
 
@@ -38,13 +38,6 @@ class ReportKind:
         if fmt == "json":
             return result.to_json() + "\n"
         raise ValueError(f"unknown report format {fmt!r} (choose from {', '.join(SUFFIXES)})")
-
-
-def slugify(text: str, fallback: str = "report") -> str:
-    """``"Ash 34 in (R161)"`` -> ``"ash-34-in-r161"``: ASCII, lower case, safe in file names."""
-    ascii_text = unicodedata.normalize("NFKD", text).encode("ascii", "ignore").decode("ascii")
-    slug = re.sub(r"[^a-z0-9]+", "-", ascii_text.lower()).strip("-")
-    return slug or fallback
 
 
 def run_stem(result: Any) -> str:

@@ -70,6 +70,6 @@ class LeagueResult(Serialisable):
 
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)  # with each bat's verdict, a property, added
-        for b, out in zip(self.bats, d["bats"]):
+        for b, out in zip(self.bats, d["bats"], strict=True):
             out["verdict"] = b.verdict
         return d

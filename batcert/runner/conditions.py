@@ -34,6 +34,12 @@ class Condition:
         return vp, (self.relative_speed - self.pitch) / r
 
 
+def _given(value: float | None) -> float:
+    """A speed the protocol schema's checks guarantee is present."""
+    assert value is not None
+    return value
+
+
 def _setup(pitch: float, moving_bat: bool) -> str:
     if pitch == 0:
         return "stationary-ball"
@@ -53,14 +59,15 @@ def conditions_from_spec(spec_conditions: Sequence[ConditionSpec], bat_length: f
             elif c.stationary == "ball":
                 pitch, moving = 0.0, True
             else:
-                pitch, moving = c.pitch_speed, True
+                pitch, moving = _given(c.pitch_speed), True
             out.append(Condition(c.name, c.description or "", _setup(pitch, moving), pitch,
                                  None, v))
             continue
-        w1 = c.bat_angular_speed
-        if w1 is None:  # linear bat speed given at a distance from the tip
-            w1 = c.bat_speed / (bat_length - c.bat_speed_from_tip - pivot)
-        pitch = c.pitch_speed
+        if c.bat_angular_speed is not None:
+            w1 = c.bat_angular_speed
+        else:  # linear bat speed given at a distance from the tip
+            w1 = _given(c.bat_speed) / (bat_length - _given(c.bat_speed_from_tip) - pivot)
+        pitch = _given(c.pitch_speed)
         out.append(Condition(c.name, c.description or "", _setup(pitch, w1 > 0), pitch, w1,
                              None))
     return out

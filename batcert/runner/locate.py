@@ -12,8 +12,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from batcert.runner.metrics import ImpactMetrics, Metric
-from batcert.runner.rules import Peaks
+from batcert.methods.metrics import ImpactMetrics, Metric
+from batcert.methods.rules import Peaks
 
 if TYPE_CHECKING:
     from batcert.runner.conditions import Condition

@@ -3,7 +3,7 @@
 :func:`run_protocol` is the one way a protocol is run (``run``, ``compare`` and ``league`` all
 call it). Its steps are small functions: check the protocol fits the bat, sweep the search window
 and locate the peaks (:mod:`batcert.runner.locate`), let the impact rule choose the impact points
-(:mod:`batcert.runner.rules`), solve there, aggregate and decide.
+(:mod:`batcert.methods.rules`), solve there, aggregate and decide.
 """
 
 from __future__ import annotations
@@ -16,6 +16,8 @@ import numpy as np
 
 from batcert import __version__
 from batcert.engines.base import Engine, ImpactBatch
+from batcert.methods.metrics import AGGREGATES, METRICS, ImpactMetrics, impact_metrics
+from batcert.methods.rules import IMPACT_RULES, Choice
 from batcert.model.build import BuiltBat
 from batcert.model.diagnostics import bat_dynamics
 from batcert.model.mass import mass_properties
@@ -24,8 +26,6 @@ from batcert.physics.batmodel import BatModel
 from batcert.results.run import ConditionResult, InputFile, MassProperties, RunResult, Sweep
 from batcert.runner.conditions import Condition, conditions_from_spec
 from batcert.runner.locate import Search, locate
-from batcert.runner.metrics import AGGREGATES, METRICS, ImpactMetrics, impact_metrics
-from batcert.runner.rules import IMPACT_RULES, Choice
 from batcert.specs.ball import BallSpec
 from batcert.specs.protocol import LimitSpec, ProtocolSpec
 
@@ -49,7 +49,7 @@ class Bench:
         """Solve every condition at its row of ``locations`` (shape (n_cond, n_loc)) in one
         batch: the metrics and the engine's diagnostics, shaped like ``locations``."""
         r = np.asarray(locations, float)
-        vp, w1 = zip(*(c.speeds(row) for c, row in zip(conds, r)))
+        vp, w1 = zip(*(c.speeds(row) for c, row in zip(conds, r, strict=True)), strict=True)
         batch = ImpactBatch(r.ravel(), np.stack(vp).ravel(), np.stack(w1).ravel())
         out = self.engine.solve(self.built.model, self.ball.model, self.pivot, batch,
                                 self.support)

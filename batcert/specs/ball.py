@@ -9,8 +9,7 @@ from typing import Any
 from batcert.errors import Collector
 from batcert.physics.ball import BallModel
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked
-from batcert.specs.schema import (Field, FieldError, Kind, Schema, choice, number, quantity,
-                                  section, text)
+from batcert.specs.schema import Field, FieldError, Kind, Schema, choice, number, quantity, section, text
 from batcert.specs.yamlio import LocatedList, load_yaml
 from batcert.units import UnitError, parse_quantity
 
@@ -19,7 +18,9 @@ def _cor_points() -> Kind:
     def parse(value: Any, errors: Collector, path: str):
         if not isinstance(value, LocatedList) or not value:
             raise FieldError("expected a list of [impact speed, COR] pairs, e.g. [[85 ft/s, 0.546]]")
-        speeds, cors, ok = [], [], True
+        speeds: list[float] = []
+        cors: list[float] = []
+        ok = True
         for i, item in enumerate(value):
             line, col = value.item_pos[i]
             sub = f"{path}[{i}]"

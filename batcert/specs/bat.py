@@ -14,8 +14,20 @@ from batcert.errors import Collector
 from batcert.physics.batmodel import Material
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked, pairs, spec_from
 from batcert.specs.materials import LIBRARY
-from batcert.specs.schema import (Field, FieldError, Kind, Schema, choice, lookup, number, one_of,
-                                  quantity, section, text, validate)
+from batcert.specs.schema import (
+    Field,
+    FieldError,
+    Kind,
+    Schema,
+    choice,
+    lookup,
+    number,
+    one_of,
+    quantity,
+    section,
+    text,
+    validate,
+)
 from batcert.specs.yamlio import Located, load_yaml
 from batcert.units import to_us
 

@@ -100,7 +100,8 @@ def pairs(first: str, second: str, first_name: str, second_name: str, *,
                              f"e.g. [[0 in, {ex2}], ...]")
         if len(value) < min_items:
             raise FieldError(f"needs at least {min_items} [{first_name}, {second_name}] pairs")
-        xs, ys = [], []
+        xs: list[float] = []
+        ys: list[float] = []
         ok = True
         for i, item in enumerate(value):
             line, col = value.item_pos[i]

@@ -18,12 +18,34 @@ from typing import Any
 from batcert.analysis.league import RULE_KINDS
 from batcert.errors import Collector
 from batcert.specs.common import Source, spec_from
-from batcert.specs.schema import (Field, FieldError, Kind, Schema, choice, list_of, lookup, number,
-                                  one_of, quantity, section, text, validate)
+from batcert.specs.schema import (
+    Field,
+    FieldError,
+    Kind,
+    Schema,
+    choice,
+    list_of,
+    lookup,
+    number,
+    one_of,
+    quantity,
+    section,
+    text,
+    validate,
+)
 from batcert.specs.yamlio import Located, LocatedList, load_yaml, where
 
 MATERIAL_CLASSES = ("wood", "metal", "composite")
 CONFIDENCE = ("H", "M", "L", "D")
+
+
+# how each kind of limit of batcert.analysis.league.RULE_KINDS is read
+LIMIT_KINDS: dict[str, Kind] = {
+    "length": quantity("length", positive=True),
+    "number": number(),
+    "metric": one_of(number(), quantity("speed"), describe="a number, or a speed for an "
+                     "exit-speed protocol"),
+}
 
 
 def _raw() -> Kind:
@@ -39,6 +61,7 @@ def _raw() -> Kind:
 
 def _check_rule(v: dict, data: Located, errors: Collector, path: str) -> None:
     kind = RULE_KINDS[v["kind"]]
+    limit_kind = LIMIT_KINDS[kind.limit] if kind.limit else None
 
     def line_of(key: str) -> int | None:
         return lookup(data, key)[0] if key in data else data.line
@@ -47,10 +70,10 @@ def _check_rule(v: dict, data: Located, errors: Collector, path: str) -> None:
         if not v["reason"]:
             errors.add(data.line, f"{path}.reason", "a not-modelled rule needs a reason (what is "
                        "missing to evaluate it)")
-        if v["limit"] is not None and kind.limit is not None:  # keep it if it parses; else text
+        if v["limit"] is not None and limit_kind is not None:  # keep it if it parses; else text
             trial = Collector(errors.file)
             try:
-                v["limit"] = kind.limit.parse(v["limit"], trial, f"{path}.limit")
+                v["limit"] = limit_kind.parse(v["limit"], trial, f"{path}.limit")
             except FieldError:
                 v["limit"] = str(v["limit"])
         elif v["limit"] is not None:
@@ -60,13 +83,13 @@ def _check_rule(v: dict, data: Located, errors: Collector, path: str) -> None:
         errors.add(line_of("kind"), f"{path}.kind", "kind 'other' cannot be evaluated; set "
                    "status: not-modelled with a reason")
         return
-    if kind.limit is not None:
+    if limit_kind is not None:
         if v["limit"] is None:
             errors.add(data.line, f"{path}.limit", f"a {v['kind']} rule needs a limit "
                        f"({kind.describe})")
         else:
             try:
-                v["limit"] = kind.limit.parse(v["limit"], errors, f"{path}.limit")
+                v["limit"] = limit_kind.parse(v["limit"], errors, f"{path}.limit")
             except FieldError as exc:
                 line, col = where(data, "limit")
                 errors.add(line, f"{path}.limit", str(exc), col)

@@ -1,8 +1,8 @@
 """Protocol specification: conditions, impact-location rule, metric, aggregation, limit.
 
 The names a protocol may use for its metric, aggregate and impact rule are those of the runner's
-registries (:data:`batcert.runner.metrics.METRICS`, :data:`~batcert.runner.metrics.AGGREGATES`,
-:data:`batcert.runner.rules.IMPACT_RULES`), so adding one there makes it valid here.
+registries (:data:`batcert.methods.metrics.METRICS`, :data:`~batcert.methods.metrics.AGGREGATES`,
+:data:`batcert.methods.rules.IMPACT_RULES`), so adding one there makes it valid here.
 """
 
 from __future__ import annotations
@@ -13,11 +13,22 @@ from typing import Any
 
 from batcert.conventions import DEFAULT_PIVOT
 from batcert.errors import Collector
-from batcert.runner.metrics import AGGREGATES, METRICS
-from batcert.runner.rules import IMPACT_RULES
+from batcert.methods.metrics import AGGREGATES, METRICS
+from batcert.methods.rules import IMPACT_RULES
 from batcert.specs.common import Source, load_checked, spec_from
-from batcert.specs.schema import (Field, Schema, choice, integer, list_of, lookup, number, one_of,
-                                  quantity, section, text)
+from batcert.specs.schema import (
+    Field,
+    Schema,
+    choice,
+    integer,
+    list_of,
+    lookup,
+    number,
+    one_of,
+    quantity,
+    section,
+    text,
+)
 from batcert.specs.yamlio import Located, load_yaml
 
 
@@ -178,7 +189,7 @@ class ConditionSpec:
 class LocationSpec:
     """The impact-location rule and its search window."""
 
-    rule: str  # a name of batcert.runner.rules.IMPACT_RULES
+    rule: str  # a name of batcert.methods.rules.IMPACT_RULES
     window: tuple[float, float]  # [nearest, farthest] distance from the tip [m]
     sweep_points: int
     resolution: float  # [m]
@@ -210,8 +221,8 @@ class ProtocolSpec:
     support: str  # pinned | free
     conditions: tuple[ConditionSpec, ...]
     impact_location: LocationSpec
-    metric: str  # a name of batcert.runner.metrics.METRICS
-    aggregate: str  # a name of batcert.runner.metrics.AGGREGATES
+    metric: str  # a name of batcert.methods.metrics.METRICS
+    aggregate: str  # a name of batcert.methods.metrics.AGGREGATES
     limit: LimitSpec | None
     origin: tuple[str | int, ...] = ()  # keys of an inline protocol inside its study file
 

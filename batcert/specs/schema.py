@@ -84,11 +84,11 @@ def validate(data: Any, schema: Schema, errors: Collector, path: str = "") -> di
                            else "required field is empty")
             out[f.name] = f.default
             continue
-        line, col = where(data, f.name)
+        at, at_col = where(data, f.name)
         try:
             out[f.name] = f.kind.parse(data[f.name], errors, sub)
         except FieldError as exc:
-            errors.add(line, sub, str(exc), col)
+            errors.add(at, sub, str(exc), at_col)
             out[f.name] = None
     if len(errors.problems) == n_before:  # cross-field checks only on fields that all parsed
         for check in schema.checks:
@@ -250,7 +250,7 @@ def lookup(data: Located, *keys: str | int) -> tuple[int | None, int | None]:
                     pos = node.key_pos[k]
                 else:
                     pos = where(node, k)
-                node = node[k]
+                node = node[k]  # type: ignore[index]  # a wrong key type is caught below
             except (KeyError, IndexError, TypeError):
                 break
     return pos

@@ -16,11 +16,29 @@ from pathlib import Path
 from batcert.analysis.claims import CLAIM_CHECKS
 from batcert.errors import Collector, InputError
 from batcert.specs.common import Source, spec_from
-from batcert.specs.protocol import (PROTOCOL_SCHEMA, ProtocolSpec, duplicate_condition_names,
-                                    load_protocol, protocol_from_values)
-from batcert.specs.schema import (Field, FieldError, Kind, Schema, choice, list_of, lookup, number,
-                                  quantity, section, text, validate)
+from batcert.specs.protocol import (
+    PROTOCOL_SCHEMA,
+    ProtocolSpec,
+    duplicate_condition_names,
+    load_protocol,
+    protocol_from_values,
+)
+from batcert.specs.schema import (
+    Field,
+    FieldError,
+    Kind,
+    Schema,
+    choice,
+    list_of,
+    lookup,
+    number,
+    quantity,
+    section,
+    text,
+    validate,
+)
 from batcert.specs.yamlio import Located, load_yaml
+
 
 def _protocol_entry() -> Kind:
     inline = section(PROTOCOL_SCHEMA)

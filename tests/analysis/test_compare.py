@@ -40,7 +40,7 @@ def _condition(name: str, value: float, *, cop: float = 0.54, sweet: float = 0.5
 def _run(bat: str, protocol: str, values: list[float], *, aggregate_value: float | None = None,
          moi: float = 0.2, engine: str = "rigid", **cond) -> RunResult:
     names = ["stationary-bat", "stationary-ball", "pitched-and-swung"][: len(values)]
-    conds = [_condition(n, v, **cond) for n, v in zip(names, values)]
+    conds = [_condition(n, v, **cond) for n, v in zip(names, values, strict=True)]
     mp = MassProperties(0.86, 0.15, 0.9, 0.43, moi, moi / (0.9 * 0.43), 0.9, 0.43, moi, None,
                         None, None, "none")
     value = sum(values) / len(values) if aggregate_value is None else aggregate_value
@@ -198,7 +198,7 @@ def test_sweet_spot_movement_against_eq7():
         out = []
         for bat in ("ash", "alu"):
             r = _run(bat, "p", [1.0, 1.0])
-            for c, s, rg in zip(r.conditions, sweets, rigids):
+            for c, s, rg in zip(r.conditions, sweets, rigids, strict=True):
                 c.sweet_spot, c.rigid_sweet_spot = s, rg
                 c.sweep = Sweep([0.4, s, 0.7], [1.0, 2.0, 1.0], [1.0, 2.0, 1.0])
             out.append([r])

@@ -12,16 +12,15 @@ from pathlib import Path
 
 import pytest
 
-from batcert.errors import InputError
-from batcert.analysis.league import (RULE_KINDS, BatFacts, bat_facts, evaluate_rule,
-                                     material_class)
+from batcert.analysis.league import RULE_KINDS, BatFacts, bat_facts, evaluate_rule, material_class
 from batcert.commands.inputs import load_bats
 from batcert.commands.league import run_league
+from batcert.errors import InputError
 from batcert.results.league import LeagueResult
 from batcert.specs.common import spec_from
 from batcert.specs.league import RULE_SCHEMA, RuleSpec, load_league
-from batcert.units import INCH, OUNCE
 from batcert.specs.resolve import shipped_names
+from batcert.units import INCH, OUNCE
 
 REPO = Path(__file__).resolve().parents[2]
 BATS = {name: REPO / "bats" / f"{name}.yaml" for name in ("ash-34", "aluminium-34", "r161")}
@@ -31,7 +30,7 @@ LEAGUES = ("ncaa", "nfhs", "usssa", "usa-baseball", "little-league", "mlb")
 @pytest.fixture(scope="module")
 def facts() -> dict[str, BatFacts]:
     loaded = load_bats([str(p) for p in BATS.values()])
-    return {name: bat_facts(b.built) for name, b in zip(BATS, loaded)}
+    return {name: bat_facts(b.built) for name, b in zip(BATS, loaded, strict=True)}
 
 
 def _verdicts(result: LeagueResult) -> dict[str, dict[str, str]]:

@@ -18,16 +18,15 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from batcert.physics import barrel, contact
-from batcert.physics.modes import cached_modes
-from batcert.physics.residual import residual_compliance
-from batcert.physics.ball import BallModel
-from batcert.physics.batmodel import Material
 from batcert.engines import ImpactBatch, get_engine
 from batcert.engines.flexible import FlexibleEngine, rigid_mode_velocities
-from batcert.physics.modes import Modes
-from batcert.model.geometry import build_geometry
 from batcert.engines.rigid import RigidEngine
+from batcert.model.geometry import build_geometry
+from batcert.physics import barrel, contact
+from batcert.physics.ball import BallModel
+from batcert.physics.batmodel import Material
+from batcert.physics.modes import Modes, cached_modes
+from batcert.physics.residual import residual_compliance
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/, for the shared helper
 from r161 import r161_bat  # noqa: E402

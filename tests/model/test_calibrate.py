@@ -11,9 +11,9 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from r161 import r161_bat  # noqa: E402
 
-from batcert.physics.modes import compute_modes
-from batcert.model.calibrate import calibrate_stiffness
 from batcert.errors import ModelError
+from batcert.model.calibrate import calibrate_stiffness
+from batcert.physics.modes import compute_modes
 
 
 def test_matches_the_measured_fundamental_and_scales_every_mode():

@@ -12,8 +12,8 @@ import pytest
 
 from batcert.physics import beam
 from batcert.physics import modes as modes_module
-from batcert.physics.modes import cached_modes, clear_mode_cache, compute_modes, mode_nodes
 from batcert.physics.batmodel import Material
+from batcert.physics.modes import cached_modes, clear_mode_cache, compute_modes, mode_nodes
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/, for the shared helper
 from r161 import r161_bat, solid_bat  # noqa: E402

@@ -8,9 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from batcert.physics.batmodel import Material
 from batcert.physics.modes import compute_modes
 from batcert.physics.residual import residual_compliance
-from batcert.physics.batmodel import Material
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/, for the shared helper
 from r161 import r161_bat, solid_bat  # noqa: E402

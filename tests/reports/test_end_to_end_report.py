@@ -13,8 +13,8 @@ import pytest
 
 from batcert.commands.inputs import load_bat_any, load_protocol_any
 from batcert.commands.run import run
-from batcert.reports.write import write_reports
 from batcert.reports.markdown import md_text
+from batcert.reports.write import write_reports
 from batcert.results.run import RunResult
 
 REPO = Path(__file__).resolve().parents[2]

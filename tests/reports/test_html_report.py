@@ -10,8 +10,8 @@ from html.parser import HTMLParser
 import pytest
 from sample import sample_result
 
-from batcert.reports.write import render
 from batcert.reports.html import run_html as render_html
+from batcert.reports.write import render
 
 VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "param",
         "source", "track", "wbr"}

@@ -7,9 +7,9 @@ import re
 import pytest
 from sample import sample_result
 
-from batcert.reports.write import render
 from batcert.reports.markdown import md_cell, md_table, md_text
 from batcert.reports.markdown import run_markdown as render_markdown
+from batcert.reports.write import render
 
 VALUE = f"{sample_result().value:.4f}"  # the mean BPF of the sample, as the report rounds it
 

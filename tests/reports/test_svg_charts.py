@@ -5,10 +5,11 @@ from __future__ import annotations
 import math
 import re
 import xml.etree.ElementTree as ET
+from itertools import pairwise
 
 import pytest
 
-from batcert.reports import svg
+from batcert.reports import charts, svg
 
 NS = "{http://www.w3.org/2000/svg}"
 NAN = float("nan")
@@ -61,7 +62,7 @@ def is_nice(values: list[float]) -> bool:
     """Evenly spaced by 1, 2, 2.5 or 5 x 10^n and all multiples of that step."""
     if len(values) < 2:
         return True
-    steps = {round(b - a, 12) for a, b in zip(values, values[1:], strict=False)}
+    steps = {round(b - a, 12) for a, b in pairwise(values)}
     if len(steps) != 1:
         return False
     step = steps.pop()
@@ -78,7 +79,7 @@ def line(**kw) -> str:
         y_label="Exit speed [m/s]")
     defaults.update(kw)
     series = defaults.pop("series")
-    return svg.line_chart(series, **defaults)
+    return charts.line_chart(series, **defaults)
 
 
 # ---- line chart ----
@@ -209,7 +210,7 @@ def bar(categories=("NCAA", "USSSA"), series=None, **kw) -> str:
                         svg.BarSeries("alloy 34", [0.50, 0.52])]
     kw.setdefault("title", "BBCOR by league")
     kw.setdefault("y_label", "BBCOR [-]")
-    return svg.bar_chart(list(categories), series, **kw)
+    return charts.bar_chart(list(categories), series, **kw)
 
 
 def test_bar_chart_well_formed_and_labelled():
@@ -273,7 +274,7 @@ def test_bar_chart_negative_values():
 
 
 def test_bar_chart_empty():
-    assert_finite_geometry(parse(svg.bar_chart([], [])))
+    assert_finite_geometry(parse(charts.bar_chart([], [])))
 
 
 def test_bar_chart_without_baseline_fits_values():

@@ -16,13 +16,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from batcert.physics import contact
-from batcert.physics.modes import cached_modes, mode_nodes
-from batcert.physics.ball import BallModel
 from batcert.engines import ImpactBatch
 from batcert.engines.flexible import FlexibleEngine
-from batcert.model.reconcile import MeasuredMassProperties, reconcile
 from batcert.engines.rigid import RigidEngine
+from batcert.model.reconcile import MeasuredMassProperties, reconcile
+from batcert.physics import contact
+from batcert.physics.ball import BallModel
+from batcert.physics.modes import cached_modes, mode_nodes
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/, for the shared helper
 from r161 import r161_bat  # noqa: E402

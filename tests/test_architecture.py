@@ -1,0 +1,152 @@
+"""The package's layers: no import cycles between modules, and each layer imports only the layers
+below it (DESIGN.md section 2: specs -> model -> engines -> runner -> results -> reports).
+
+Imports are read from the source (every ``import`` statement, also those inside functions, which
+still make one module depend on another), except those under ``if TYPE_CHECKING:``, which exist
+only for type checkers.
+"""
+
+from __future__ import annotations
+
+import ast
+from importlib import resources
+from pathlib import Path
+
+import batcert
+
+PACKAGE = Path(str(resources.files(batcert)))
+
+# layer -> layers (package folders or top-level modules) it may import, besides itself
+ALLOWED = {
+    "units": set(), "errors": set(), "conventions": set(), "__init__": set(),
+    "physics": set(),
+    "methods": {"physics"},
+    "engines": {"physics"},
+    "results": set(),
+    # the spec schemas take their names from the registries that hold each concept's function:
+    # methods/ (metrics, aggregates, impact rules) and, in analysis/, the claim checks and league
+    # rule kinds (see REGISTRIES)
+    "specs": {"units", "errors", "conventions", "physics", "methods"},
+    "model": {"units", "errors", "conventions", "physics", "specs", "results"},
+    "runner": {"units", "errors", "conventions", "physics", "methods", "engines", "specs",
+               "model", "results", "__init__"},
+    "reports": {"units", "results", "methods"},
+    "analysis": {"units", "results", "reports", "__init__"},
+    "commands": {"units", "errors", "conventions", "physics", "engines", "specs", "model",
+                 "results", "runner", "analysis"},
+    "console": {"units", "reports", "results"},
+    "cli": {"__init__", "console", "errors", "commands", "engines", "specs", "units", "reports",
+            "runner"},
+    "__main__": {"cli"},
+}
+# registry modules of analysis/ that the specs layer may read (they import nothing of specs/)
+REGISTRIES = {"batcert.analysis.claims", "batcert.analysis.league"}
+
+
+def _module_name(path: Path) -> str:
+    rel = path.relative_to(PACKAGE.parent).with_suffix("")
+    parts = list(rel.parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def _type_checking_lines(tree: ast.AST) -> set[int]:
+    lines: set[int] = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test):
+            for sub in node.body:
+                lines.update(range(sub.lineno, (sub.end_lineno or sub.lineno) + 1))
+    return lines
+
+
+def import_graph() -> dict[str, set[str]]:
+    """Module -> batcert modules it imports (at any depth in its code)."""
+    modules = {_module_name(p): p for p in PACKAGE.rglob("*.py")}
+    graph: dict[str, set[str]] = {}
+    for name, path in modules.items():
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        skip = _type_checking_lines(tree)
+        deps: set[str] = set()
+        for node in ast.walk(tree):
+            if getattr(node, "lineno", None) in skip:
+                continue
+            if isinstance(node, ast.Import):
+                targets = [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom) and node.module:
+                targets = [node.module] + [f"{node.module}.{a.name}" for a in node.names]
+            else:
+                continue
+            deps |= {t for t in targets if t in modules and t != name}
+        graph[name] = deps
+    return graph
+
+
+def _layer(module: str) -> str:
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else "__init__"
+
+
+def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """Strongly connected components with more than one module (Tarjan)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on: set[str] = set()
+    out: list[list[str]] = []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on.add(v)
+        for w in graph[v]:
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                out.append(sorted(comp))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return out
+
+
+def test_no_import_cycles():
+    assert _cycles(import_graph()) == []
+
+
+def test_each_layer_imports_only_the_layers_below():
+    wrong = []
+    for module, deps in import_graph().items():
+        layer = _layer(module)
+        for dep in deps:
+            target = _layer(dep)
+            if target == layer or target in ALLOWED[layer]:
+                continue
+            if layer == "specs" and dep in REGISTRIES:
+                continue
+            wrong.append(f"{module} -> {dep}")
+    assert wrong == []
+
+
+def test_no_cycles_between_layers():
+    """Also no cycle between the packages (layers) as wholes."""
+    layers: dict[str, set[str]] = {}
+    for module, deps in import_graph().items():
+        layers.setdefault(_layer(module), set()).update(
+            _layer(d) for d in deps if _layer(d) != _layer(module))
+    for layer in list(layers.values()):
+        for dep in layer:
+            layers.setdefault(dep, set())
+    assert _cycles(layers) == []

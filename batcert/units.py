@@ -133,6 +133,7 @@ _US: dict[str, tuple[str, float]] = {
     "speed": ("mph", 1 / MPH),
     "angular_speed": ("rpm", 60 / (2 * 3.141592653589793)),
 }
+DASH = "\u2014"  # how an empty or undefined value is shown, everywhere
 _SI_LABEL = {"length": "m", "mass": "kg", "moi": "kg m²", "speed": "m/s", "angular_speed": "rad/s"}
 
 
@@ -161,7 +162,7 @@ def si_unit(dimension: str) -> str:
 def show(value_si: float | None, dimension: str, digits: int = 3) -> Display:
     """Format an SI value with its US customary equivalent, e.g. ``0.860 m (33.86 in)``."""
     if value_si is None:
-        return Display("—", None)
+        return Display(DASH, None)
     si = f"{value_si:.{digits}f} {_SI_LABEL[dimension]}"
     if dimension in _US:
         unit, factor = _US[dimension]

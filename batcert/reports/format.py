@@ -14,9 +14,8 @@ from collections.abc import Iterator
 from datetime import datetime
 from typing import Any
 
-from batcert.units import INCH, Display, show, to_us
+from batcert.units import DASH, INCH, Display, show, to_us
 
-DASH = "\u2014"  # an empty or undefined value
 MINUS = "\u2212"  # a typographic minus sign for signed values
 
 

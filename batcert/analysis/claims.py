@@ -48,8 +48,8 @@ def findings(result: ComparisonResult, tol: float = 0.005) -> list[str]:
                 shape = f"some conditions show no difference beyond ±{tol * 100:g} %"
             else:
                 shape = "the same sign in every condition"
-            spread = (f"; std {s.std * 100:.2f} %, range {percent(s.min)} to {percent(s.max)} over "
-                      f"{len(ps)} conditions" if len(ps) > 1 else "")
+            spread = (f"; std {(s.std or 0.0) * 100:.2f} %, range {percent(s.min)} to "
+                      f"{percent(s.max)} over {len(ps)} conditions" if len(ps) > 1 else "")
             out.append(f"{p.protocol} ({p.metric}, {p.impact_rule}): P of {lab} against {ref} "
                        f"has mean {percent(s.mean)}{spread}: {shape}.")
     for lab, kinds in signs.items():
@@ -84,6 +84,12 @@ def _entries(result: ComparisonResult, pids: Sequence[str], labels: Sequence[str
                 yield p, c, lab, c.bats[lab]
 
 
+def _defined(values: Sequence[float | None]) -> list[float] | None:
+    """The values, or None when any is undefined."""
+    out = [v for v in values if v is not None]
+    return out if len(out) == len(values) else None
+
+
 def _check_sign_disagreement(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, str]:
     tol = claim.tolerance
     vals = [(b.relative, f"{lab}, {p.protocol}/{c.name}")
@@ -102,15 +108,15 @@ def _check_consistent(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, 
     tol, ok, parts = claim.tolerance, True, []
     yard = None
     if claim.compare_with:
-        ys = [b.relative for _, _, _, b in _entries(result, claim.compare_with)]
-        if any(v is None for v in ys):
+        ys = _defined([b.relative for _, _, _, b in _entries(result, claim.compare_with)])
+        if ys is None:
             return "not-testable", "P is undefined in a yardstick protocol."
         yard = max(ys) - min(ys)
     for pid in claim.protocols:
         p = result.protocol(pid)
         for lab in result.compared:
-            ps = [c.bats[lab].relative for c in p.conditions]
-            if any(v is None for v in ps):
+            ps = _defined([c.bats[lab].relative for c in p.conditions])
+            if ps is None:
                 return "not-testable", f"P is undefined in {pid}."
             kinds = {_sign(v, tol) for v in ps}
             rng = max(ps) - min(ps)
@@ -156,7 +162,7 @@ def _check_lower_than(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, 
     return ("supported" if ok else "not-supported"), "; ".join(parts) + "."
 
 
-def _located(result: ComparisonResult, claim: dict, labels: Sequence[str]):
+def _located(result: ComparisonResult, claim: ClaimSpec, labels: Sequence[str]):
     entries = list(_entries(result, claim.protocols, labels))
     good = [e for e in entries if not e[3].sweet_spot_at_edge]
     note = (f" {len(entries) - len(good)} of {len(entries)} bat-conditions left out: their "
@@ -197,9 +203,11 @@ def _check_sweet_spot_moves(result: ComparisonResult, claim: ClaimSpec) -> tuple
     for pid in claim.protocols:
         p = result.protocol(pid)
         for b in result.bats:
-            pts = [(c.bats[b.label].sweet_spot, c.bats[b.label].rigid_sweet_spot)
-                   for c in p.conditions if c.bats[b.label].rigid_sweet_spot is not None
-                   and not c.bats[b.label].sweet_spot_at_edge]
+            pts: list[tuple[float, float]] = []
+            for c in p.conditions:
+                bc = c.bats[b.label]
+                if bc.rigid_sweet_spot is not None and not bc.sweet_spot_at_edge:
+                    pts.append((bc.sweet_spot, bc.rigid_sweet_spot))
             if len(pts) < 2:
                 continue
             tested += 1

@@ -14,7 +14,7 @@ import datetime as _dt
 import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from batcert import __version__
 from batcert.results.league import BatLeagueResult, LeagueResult, RuleResult
@@ -119,7 +119,7 @@ def _construction(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleRes
 
 
 def _material(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleResult:
-    allowed = list(rule.allowed)
+    allowed = list(rule.allowed or [])
     value = f"{f.material} ({f.material_class or 'class unknown'})"
     if f.material in allowed or (f.material_class is not None and f.material_class in allowed):
         verdict, note = "pass", f"classed from {f.material_class_basis}"
@@ -215,7 +215,7 @@ def _clean(text: str | None) -> str:
 def evaluate_rule(rule: RuleSpec, f: BatFacts, run: RunResult | None = None) -> RuleResult:
     """One rule on one bat. Scope first (not-applicable), then not-modelled, then the check."""
     scope = applies(rule, f)
-    common = {"title": _clean(rule.title) or rule.id,
+    common: dict[str, Any] = {"title": _clean(rule.title) or rule.id,
               "applies_to": rule.applies_to, "source": _clean(rule.source),
               "confidence": rule.confidence or "",
               "unit": RULE_KINDS[rule.kind].unit if isinstance(rule.limit, float)

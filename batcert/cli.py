@@ -179,8 +179,8 @@ def _show_bat(info: dict) -> None:
         console.table(Table(["mode", "frequency [Hz]", "nodes [cm from knob]"], rows,
                             [False, True, True]), "free-free bending modes")
     if info.get("barrel"):
-        console.kv_table("barrel (hoop) spring", [(k, f"{v:.4g}" if isinstance(v, float) else str(v))
-                                                  for k, v in info["barrel"].items()])
+        from batcert.reports.format import flatten
+        console.kv_table("barrel (shell of revolution; SI: m, Hz)", list(flatten(info["barrel"])))
 
 
 def _show_ball(info: dict) -> None:

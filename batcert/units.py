@@ -21,6 +21,7 @@ DIMENSIONS: dict[str, tuple[str, str, str | None, str]] = {
     "modulus": ("[mass] / [length] / [time] ** 2", "Pa", "psi", "71.7 GPa"),
     "time": ("[time]", "s", None, "0.5 s"),
     "frequency": ("1 / [time]", "Hz", None, "165 Hz"),
+    "force": ("[mass] * [length] / [time] ** 2", "N", "lbf", "220 lbf"),
 }
 
 
@@ -31,6 +32,7 @@ _NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([
 # need pint's registry (about 0.4 s of start-up). Every entry is checked against pint in
 # tests/test_units.py; anything not listed here goes through pint.
 INCH, OUNCE, FOOT, MPH = 0.0254, 0.028349523125, 0.3048, 0.44704  # [m], [kg], [m], [m/s]
+POUND_FORCE = 4.4482216152605  # [N]
 FAST_UNITS: dict[str, dict[str, float]] = {
     "length": {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": INCH, "ft": FOOT},
     "mass": {"kg": 1.0, "g": 0.001, "oz": OUNCE, "lb": 0.45359237},
@@ -43,6 +45,7 @@ FAST_UNITS: dict[str, dict[str, float]] = {
     "modulus": {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9},
     "time": {"s": 1.0, "ms": 1e-3},
     "frequency": {"Hz": 1.0, "kHz": 1e3},
+    "force": {"N": 1.0, "kN": 1e3, "lbf": POUND_FORCE},
 }
 
 
@@ -132,9 +135,11 @@ _US: dict[str, tuple[str, float]] = {
     "moi": ("oz*in^2", 1 / (OUNCE * INCH**2)),
     "speed": ("mph", 1 / MPH),
     "angular_speed": ("rpm", 60 / (2 * 3.141592653589793)),
+    "force": ("lbf", 1 / POUND_FORCE),
 }
 DASH = "\u2014"  # how an empty or undefined value is shown, everywhere
-_SI_LABEL = {"length": "m", "mass": "kg", "moi": "kg m²", "speed": "m/s", "angular_speed": "rad/s"}
+_SI_LABEL = {"length": "m", "mass": "kg", "moi": "kg m²", "speed": "m/s", "angular_speed": "rad/s",
+             "force": "N", "frequency": "Hz"}
 
 
 @dataclass(frozen=True)

@@ -28,7 +28,8 @@ if TYPE_CHECKING:
 _REL = 1e-9  # comparisons allow this relative rounding (a 2.61 in barrel meets a 2.61 in limit)
 
 # Library materials by class; inline materials are classed from words in their name.
-MATERIAL_CLASS = {"ash": "wood", "maple": "wood", "birch": "wood", "aluminium-7050": "metal"}
+MATERIAL_CLASS = {"ash": "wood", "ash-bat": "wood", "maple": "wood", "birch": "wood",
+                  "aluminium-7050": "metal"}
 _CLASS_WORDS = {
     "wood": ("wood", "ash", "maple", "birch", "bamboo", "hickory", "beech"),
     "metal": ("aluminium", "aluminum", "alloy", "steel", "titanium", "scandium"),

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from batcert.conventions import STANDARD_GRAVITY
 from batcert.errors import ModelError
-from batcert.model.calibrate import calibrate_stiffness
+from batcert.model.calibrate import calibrate_barrel, calibrate_stiffness
 from batcert.model.geometry import build_geometry
 from batcert.model.reconcile import MeasuredMassProperties, Reconciliation, reconcile
 from batcert.physics.batmodel import BatModel
@@ -47,6 +47,21 @@ def measured_properties(m: MeasuredSpec) -> MeasuredMassProperties:
     return MeasuredMassProperties(m.mass, bp, moi, p)
 
 
+def _barrel_text(corr: dict[str, float]) -> str:
+    text = f"; barrel wall stiffness x {corr['barrel_stiffness_scale']:.3f}"
+    if corr["barrel_mass_scale"] != 1.0:
+        text += f" and mass x {corr['barrel_mass_scale']:.3f}"
+    sources = []
+    if "measured_compression_stiffness" in corr:
+        sources.append(f"the measured compression stiffness "
+                       f"{corr['measured_compression_stiffness']:.4g} N/m (model "
+                       f"{corr['model_compression_stiffness']:.4g} N/m)")
+    if "measured_hoop_frequency_hz" in corr:
+        sources.append(f"the measured {corr['measured_hoop_frequency_hz']:.0f} Hz hoop frequency "
+                       f"(model {corr['model_hoop_frequency_hz']:.0f} Hz)")
+    return text + " to match " + " and ".join(sources)
+
+
 def _wall_stations(spec: BatSpec):
     if spec.construction != "hollow":
         return None, None
@@ -62,7 +77,7 @@ def build_bat(spec: BatSpec) -> BuiltBat:
         geometry = build_geometry(
             spec.name, spec.construction, spec.length, spec.profile[0], spec.profile[1],
             spec.material, wall_z, wall_t, spec.knob_mass, spec.end_cap_mass,
-            spec.shear_correction, spec.slice_length, spec.barrel_effective_width)
+            spec.shear_correction, spec.slice_length, spec.barrel_end)
         meas = measured_properties(spec.measured) if spec.measured else None
         model, rec = reconcile(geometry, meas, spec.reconcile)
         freq = spec.measured.first_bending_frequency if spec.measured else None
@@ -72,6 +87,11 @@ def build_bat(spec: BatSpec) -> BuiltBat:
                 rec.method, rec.description + f"; stiffness x {corr['stiffness_scale']:.3f} to "
                 f"match the measured {freq:.0f} Hz fundamental (model "
                 f"{corr['model_first_frequency_hz']:.0f} Hz)", {**rec.corrections, **corr})
+        m = spec.measured
+        if m is not None and (m.hoop_frequency is not None or m.barrel_compression is not None):
+            model, corr = calibrate_barrel(model, m.hoop_frequency, m.barrel_compression)
+            rec = Reconciliation(rec.method, rec.description + _barrel_text(corr),
+                                 {**rec.corrections, **corr})
     except ModelError as exc:
         raise spec.source.problem(exc.field, str(exc)) from None
     return BuiltBat(spec, geometry, model, rec, meas, freq)

@@ -35,3 +35,65 @@ def calibrate_stiffness(bat: BatModel, first_bending_frequency: float, pivot: fl
                     shear_stiffness=bat.shear_stiffness * scale)
     return model, {"stiffness_scale": scale, "model_first_frequency_hz": f_model,
                    "measured_first_frequency_hz": first_bending_frequency}
+
+
+BARREL_STIFFNESS_BOUNDS = (0.25, 4.0)
+BARREL_MASS_BOUNDS = (0.5, 2.0)
+
+
+def calibrate_barrel(bat: BatModel, hoop_frequency: float | None = None,
+                     compression: dict | None = None) -> tuple[BatModel, dict[str, float]]:
+    """Return the bat with its barrel shell calibrated to what a lab measured, and the
+    correction applied.
+
+    A measured hoop frequency alone scales the shell's Young's modulus by
+    ``s_k = (f_measured / f_model)^2`` (the wall's mass kept), so the model's lowest n = 2
+    frequency matches it. A barrel compression test (force on a platen at a stated approach)
+    sets ``s_k`` from the static stiffness instead (:func:`batcert.physics.barrel.compression_stiffness`);
+    a hoop frequency given with it then sets the shell's mass scale ``s_m`` so that the
+    frequency matches too. Corrections outside x0.25-x4 (stiffness) or x0.5-x2 (mass) are
+    refused: they say the wall, profile or material of the file is not the bat's.
+    """
+    from batcert.physics import barrel
+
+    f_model = barrel.hoop_frequency(bat)
+    if f_model is None:
+        raise ModelError("measured", "only a hollow bat has a barrel to calibrate")
+    corr: dict[str, float] = {"model_hoop_frequency_hz": f_model}
+    s_k, s_m = 1.0, 1.0
+    if compression is not None:
+        z = bat.length - compression["position"]
+        try:
+            k_model = barrel.compression_stiffness(bat, z, compression["platen_width"])
+        except ValueError as exc:
+            raise ModelError("measured.barrel_compression.position", str(exc)) from None
+        k_measured = compression["force"] / compression["deflection"]
+        s_k = k_measured / k_model
+        corr.update(model_compression_stiffness=k_model,
+                    measured_compression_stiffness=k_measured)
+        _check_scale("measured.barrel_compression", s_k, BARREL_STIFFNESS_BOUNDS,
+                     f"matching {k_measured:.4g} N/m needs the wall's stiffness x {s_k:.2f} "
+                     f"(model {k_model:.4g} N/m)")
+        if hoop_frequency is not None:
+            s_m = s_k * (f_model / hoop_frequency) ** 2
+            _check_scale("measured.hoop_frequency", s_m, BARREL_MASS_BOUNDS,
+                         f"with the stiffness from the compression test, matching "
+                         f"{hoop_frequency:.0f} Hz needs the wall's mass x {s_m:.2f}")
+    elif hoop_frequency is not None:
+        s_k = (hoop_frequency / f_model) ** 2
+        _check_scale("measured.hoop_frequency", s_k, BARREL_STIFFNESS_BOUNDS,
+                     f"matching {hoop_frequency:.0f} Hz needs the wall's stiffness x {s_k:.2f} "
+                     f"(model hoop frequency {f_model:.0f} Hz)")
+    if hoop_frequency is not None:
+        corr["measured_hoop_frequency_hz"] = hoop_frequency
+    corr.update(barrel_stiffness_scale=s_k, barrel_mass_scale=s_m)
+    model = replace(bat, barrel_stiffness_scale=bat.barrel_stiffness_scale * s_k,
+                    barrel_mass_scale=bat.barrel_mass_scale * s_m)
+    return model, corr
+
+
+def _check_scale(field: str, scale: float, bounds: tuple[float, float], what: str) -> None:
+    lo, hi = bounds
+    if not lo <= scale <= hi:
+        raise ModelError(field, f"{what}; allowed x{lo}-x{hi}: check the measurement, the "
+                         "wall, the profile and the material")

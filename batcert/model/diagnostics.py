@@ -1,5 +1,5 @@
 """What a built bat's dynamics look like: free-free bending modes with their nodes and, for a
-hollow bat, the barrel's hoop spring. Shown by ``inspect`` and recorded with every run."""
+hollow bat, its barrel shell. Shown by ``inspect`` and recorded with every run."""
 
 from __future__ import annotations
 
@@ -10,24 +10,41 @@ from batcert.model.build import BuiltBat
 
 def bat_dynamics(built: BuiltBat, pivot: float) -> dict:
     """Free-free bending frequencies [Hz] and node positions [m from knob] of the first modes;
-    for hollow bats the barrel's hoop frequency and spring-mass at the middle of the barrel."""
+    for hollow bats the barrel (:func:`barrel_summary`)."""
     from batcert.physics.modes import cached_modes, mode_nodes
     modes = cached_modes(built.model, "free", pivot, 8)
     out: dict = {"modes_hz": modes.frequencies_hz.tolist(),
                  "mode_nodes": [mode_nodes(modes, j).tolist() for j in (1, 2, 3, 4)]}
-    m = built.model
-    if m.construction == "hollow":
-        from batcert.physics import barrel
-        z0, z1 = barrel.barrel_region(m)
-        zc = 0.5 * (z0 + z1)  # middle of the full-diameter barrel, where the hoop mode peaks
-        i = int(np.searchsorted(m.z_edges, zc, side="right") - 1)  # the slice holding zc
-        k, mass = barrel.barrel_spring_at(m, [zc])  # what the engine uses there
-        out["barrel"] = {"start": z0, "end": z1, "position": zc,
-                         "outer_diameter": float(m.outer_diameter[i]),
-                         "wall": float(m.wall_thickness[i]),
-                         "effective_width": m.barrel_effective_width
-                         or barrel.default_effective_width(m),
-                         "hoop_frequency_hz": float(barrel.hoop_frequency(
-                             0.5 * m.outer_diameter[i], m.wall_thickness[i], m.material)),
-                         "stiffness": float(k[0]), "mass": float(mass[0])}
+    if built.model.construction == "hollow":
+        out["barrel"] = barrel_summary(built)
     return out
+
+
+def barrel_summary(built: BuiltBat) -> dict:
+    """The barrel shell of a hollow bat (SI): its extent, wall and diameter at the largest
+    diameter, the model's lowest frequencies per circumferential order (free bat), the hoop
+    (n = 2) frequency against the measured one, the thin-ring frequency for comparison, and
+    the calibration applied."""
+    from batcert.physics import barrel, shell
+    m = built.model
+    sh = barrel.barrel_shell(m)
+    assert sh is not None  # a hollow bat has a wall
+    i = int(np.argmax(np.where(m.inner_diameter > 0, m.outer_diameter, -np.inf)))
+    wall = float(m.wall_thickness[i])
+    outer = float(m.outer_diameter[i])
+    orders = {}
+    for n in (0, 2, 3, 4):
+        f = shell.harmonic_modes(sh, n, 12_000.0).omega[:3] / (2 * np.pi)
+        orders[f"n={n}"] = f.tolist()
+    measured = built.spec.measured
+    return {"start": float(sh.z[0]), "end": float(sh.z[-1]), "tip_end": m.barrel_end,
+            "outer_diameter": outer, "wall": wall,
+            "hoop_frequency_hz": barrel.hoop_frequency(m),
+            "measured_hoop_frequency_hz": measured.hoop_frequency if measured else None,
+            "ring_frequency_hz": float(shell.ring_frequency(
+                0.5 * (outer - wall), wall, m.material.youngs_modulus * m.barrel_stiffness_scale,
+                m.material.density * m.barrel_mass_scale, m.material.poisson_ratio)),
+            "modes_hz": orders, "stiffness_scale": m.barrel_stiffness_scale,
+            "mass_scale": m.barrel_mass_scale,
+            "calibrated": bool(measured and (measured.hoop_frequency is not None
+                                             or measured.barrel_compression is not None))}

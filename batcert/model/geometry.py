@@ -33,8 +33,7 @@ def default_shear_correction(construction: str, poisson_ratio: float) -> float:
 def build_geometry(name: str, construction: str, length: float, profile_z, profile_d,
                    material: Material, wall_z=None, wall_t=None, knob_mass: float = 0.0,
                    end_cap_mass: float = 0.0, shear_correction: float | None = None,
-                   slice_length: float = 0.01, barrel_effective_width: float | None = None
-                   ) -> BatModel:
+                   slice_length: float = 0.01, barrel_end: str = "closed") -> BatModel:
     """Slice the bat (slices of at most ``slice_length`` [m]) and compute section properties.
 
     The profile (outer diameter [m] at stations ``profile_z`` [m from knob]) and the wall
@@ -70,6 +69,6 @@ def build_geometry(name: str, construction: str, length: float, profile_z, profi
         bending_stiffness=material.youngs_modulus * i_area,
         shear_stiffness=kappa * material.shear_modulus * area,
         point_masses=tuple(points), material=material,
-        barrel_effective_width=barrel_effective_width if construction == "hollow" else None,
+        barrel_end=barrel_end,
         extras={"shear_correction": kappa},
     )

@@ -1,228 +1,310 @@
-r"""The hollow barrel as a local spring-mass: the thin-ring n = 2 ("hoop", "trampoline") mode.
+r"""A hollow bat's barrel as a thin shell of revolution: its modes, its compliance under the
+ball, its hoop frequency and its compression stiffness.
 
-A hollow barrel flattens under the ball. batcert represents that flexing by the lowest flexural
-mode of a thin ring of the barrel's cross-section, width ``b`` (the "effective width" of barrel
-that takes part), as one spring-mass in series with the ball (DESIGN.md Sec. 4; Nathan, Russell &
-Smith, "The physics of the trampoline effect in baseball and softball bats", 2004).
+The wall of a hollow bat (every contiguous hollow slice around the largest diameter: handle,
+taper, barrel) is a shell of revolution (:mod:`batcert.physics.shell`) with the bat's mid-surface
+radius, wall and reconciled density along it, and its ends held round by the knob and the end
+cap (``closed``) or left open (``BatModel.barrel_end``). Its deformation is expanded in
+circumferential orders: ``n = 1`` moves each cross-section as a whole and is the beam's bending
+(:mod:`batcert.physics.beam`), so the barrel contributes the orders ``n = 0`` (breathing) and
+``n >= 2`` (ovalling and higher). These are orthogonal to the beam's motion, so the two add
+without counting any mass twice.
 
-Derivation (inextensional thin ring, after Love, *A Treatise on the Mathematical Theory of
-Elasticity*, 4th ed., 1927, and Soedel, *Vibrations of Shells and Plates*, 3rd ed., 2004). Mean
-radius ``R``, wall ``t``, width ``b``, plane-strain modulus ``E' = E / (1 - nu^2)``, density
-``rho``, bending stiffness of the wall ``D = E' b t^3 / 12``. Take the n-th mode with radial
-displacement ``w = A cos(n theta)``. An inextensional mid-surface (``w + dv/dtheta = 0``) forces
-the tangential displacement ``v = -(A / n) sin(n theta)``. Then
+The ball presses on a patch: along the bat the same semicircular weight over ``2 a`` as the
+beam's contact patch, around it the same weight over the arc ``2 a`` of the outer surface
+(half-angle ``beta = a / R_outer``). Order ``n`` feels the load through the factor
+``c_n = 2 J_1(n beta) / (n beta)`` (:func:`~batcert.physics.shell.circumferential_factor`).
 
-* change of curvature ``(w_thth + w) / R^2``, so the strain energy is
-  ``U = (D / 2 R^3) int (w_thth + w)^2 dtheta = (pi D (n^2 - 1)^2 / (2 R^3)) A^2``;
-* kinetic energy ``T = (rho b t R / 2) int (w_t^2 + v_t^2) dtheta
-  = (pi rho b t R (1 + 1/n^2) / 2) A_t^2``.
-
-With ``A``, the radial displacement at the loaded point ``theta = 0``, as the coordinate, a point
-load ``P`` there does work ``P A``, so the mode acts on the ball as a spring and a mass
-
-* ``k = pi D (n^2 - 1)^2 / R^3``, for n = 2: ``k = (9 pi / 12) E' b t^3 / R^3``,
-* ``m = pi rho b t R (1 + 1/n^2)``, for n = 2: ``m = (5/4) pi rho b t R``,
-
-and ``omega_n^2 = k / m`` gives the classical inextensional ring frequency (Love; Soedel)
-
-    ``omega_n = (t / R^2) sqrt(E' / (12 rho)) n (n^2 - 1) / sqrt(n^2 + 1)``.
-
-Axial extent (the barrel's (n = 2, m = 1) hoop mode). The lowest hoop mode of a real barrel is
-the shell mode with two circumferential waves and one axial half-wave over the barrel (Russell,
-"Acoustics and vibration of baseball and softball bats", Acoustics Today 13(4), 2017): radial
-displacement ``A cos(2 theta) sin(pi x / L_b)`` over the full-diameter barrel of length ``L_b``.
-Integrating the energies above along the barrel, with ``A`` the displacement at the axial position
-``x`` of the impact, gives the same spring-mass with ``b = L_b / 2`` divided by
-``sin^2(pi x / L_b)``: stiffest and heaviest (no trampoline) at the barrel's ends, most compliant
-at its middle. So the default effective width is half the barrel length
-(:func:`default_effective_width`), and :func:`barrel_spring_at` applies the axial shape. Both the
-width and the shape follow from the geometry; nothing is fitted to a performance result.
-
-Limitations: only the n = 2 term is kept (for a point load on a free ring the n >= 3 terms add
-``9 sum_{n>=3} (n^2 - 1)^-2 = 21 %`` to the static compliance, so ``k`` is an upper bound);
-the ring has no axial coupling with the rest of the barrel, so ``omega_2`` is a lower bound on a
-real barrel's hoop frequency (REFERENCE-DATA.md, "Materials"); ``t << R`` is assumed.
+What the engine uses per impact (:func:`barrel_response`): the modes of orders
+``0, 2 .. dynamic_orders`` below ``max_frequency`` as extra modes of the bat (gain
+``c_n W_j`` averaged over the patch), and the quasi-static compliance of everything left out
+(higher modes of those orders, and the orders up to ``static_orders``), a spring in series with
+the ball like the beam's residual compliance. Nothing here is fitted: the shell comes from the
+profile, the wall and the material; a measured hoop frequency or barrel compression scales its
+stiffness (and mass) through ``BatModel.barrel_stiffness_scale`` / ``barrel_mass_scale``
+(:mod:`batcert.model.calibrate`).
 """
 
 from __future__ import annotations
 
+import hashlib
+from collections import OrderedDict
+from dataclasses import dataclass
+
 import numpy as np
+import scipy.linalg
 
-from batcert.physics.batmodel import BatModel, Material
+from batcert.physics.batmodel import BatModel
+from batcert.physics.shell import (
+    Assembler,
+    HarmonicSystem,
+    ShellOfRevolution,
+    assemble,
+    circumferential_factor,
+    harmonic_modes,
+    normal_reader,
+    static_solve,
+)
 
-N_RING = 2  # circumferential wave number of the hoop mode used
+DYNAMIC_ORDERS = 6  # highest order whose modes join the engine (0, 2..6)
+STATIC_ORDERS = 40  # highest order summed into the quasi-static residual
+MAX_FREQUENCY = 8000.0  # modes above this [Hz] respond quasi-statically to a ~1 ms contact
 
 
-def _ring(outer_radius, wall, material: Material):
-    """Mean radius ``R = outer_radius - wall / 2`` [m], wall [m] and ``E'`` [Pa], broadcast."""
-    r_out, t = np.broadcast_arrays(np.asarray(outer_radius, dtype=float),
-                                   np.asarray(wall, dtype=float))
-    if np.any(t <= 0) or np.any(t >= r_out):
-        raise ValueError("barrel wall must satisfy 0 < wall < outer radius")
-    e_plane = material.youngs_modulus / (1.0 - material.poisson_ratio**2)
-    return r_out - 0.5 * t, t, e_plane
+def barrel_shell(bat: BatModel) -> ShellOfRevolution | None:
+    """The hollow wall of ``bat`` as a shell of revolution, or None for a solid bat.
 
-
-def hoop_angular_frequency(outer_radius, wall, material: Material):
-    """Angular frequency of the n = 2 ring mode [rad/s] (Love 1927; derivation in module notes).
-
-    Parameters
-    ----------
-    outer_radius : array_like
-        Barrel outer radius [m].
-    wall : array_like
-        Wall thickness [m].
-    material : Material
-        Uses ``density`` [kg/m^3], ``youngs_modulus`` [Pa] and ``poisson_ratio`` [-].
-
-    Returns
-    -------
-    numpy.ndarray
-        ``omega_2 = (t / R^2) sqrt(E' / (12 rho)) n (n^2 - 1) / sqrt(n^2 + 1)`` [rad/s], with
-        ``R`` the mean radius and ``E' = E / (1 - nu^2)``.
+    The contiguous run of hollow slices around the largest hollow diameter; nodes at the slice
+    edges with the mid-surface radius interpolated from the slice centres; per element the
+    slice's wall, its reconciled density (``linear_density / area``) times
+    ``barrel_mass_scale``, and ``E`` times ``barrel_stiffness_scale``. The knob end is held
+    round (a knob plug); the tip end as ``bat.barrel_end`` says.
     """
-    radius, t, e_plane = _ring(outer_radius, wall, material)
-    n = N_RING
-    return (t / radius**2) * np.sqrt(e_plane / (12.0 * material.density)) * (
-        n * (n * n - 1) / np.sqrt(n * n + 1.0))
-
-
-def hoop_frequency(outer_radius, wall, material: Material):
-    """Frequency of the n = 2 ring (hoop) mode [Hz]; see :func:`hoop_angular_frequency`.
-
-    Parameters
-    ----------
-    outer_radius : array_like
-        Barrel outer radius [m].
-    wall : array_like
-        Wall thickness [m].
-    material : Material
-        Barrel material.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``omega_2 / (2 pi)`` [Hz].
-    """
-    return hoop_angular_frequency(outer_radius, wall, material) / (2.0 * np.pi)
-
-
-def barrel_spring(outer_radius, wall, material: Material, effective_width):
-    """Point-load stiffness and modal mass of the n = 2 ring mode (module notes).
-
-    Parameters
-    ----------
-    outer_radius : array_like
-        Barrel outer radius [m].
-    wall : array_like
-        Wall thickness [m].
-    material : Material
-        Barrel material.
-    effective_width : array_like
-        Axial width ``b`` of barrel taking part in the hoop flexing [m].
-
-    Returns
-    -------
-    stiffness : numpy.ndarray
-        ``k = (9 pi / 12) E' b t^3 / R^3`` [N/m].
-    mass : numpy.ndarray
-        ``m = (5/4) pi rho b t R`` [kg]; ``sqrt(k / m)`` is :func:`hoop_angular_frequency`.
-    """
-    radius, t, e_plane = _ring(outer_radius, wall, material)
-    b = np.asarray(effective_width, dtype=float)
-    if np.any(b <= 0):
-        raise ValueError("barrel effective width must be positive")
-    n2 = N_RING * N_RING
-    stiffness = np.pi * e_plane * (b * t**3 / 12.0) * (n2 - 1) ** 2 / radius**3
-    mass = np.pi * material.density * b * t * radius * (1.0 + 1.0 / n2)
-    return stiffness, mass
-
-
-_BARREL_DIAMETER_FRACTION = 0.99  # slices this close to the largest diameter form the barrel
-_MIN_AXIAL_SHAPE = 0.05  # below this sin(pi x / L_b) the hoop mode is left out (k, m -> inf)
-
-
-def barrel_region(bat: BatModel) -> tuple[float, float]:
-    """Start and end of the full-diameter hollow barrel, from the knob [m].
-
-    The contiguous run of hollow slices whose outer diameter is within 1 % of the largest,
-    around the largest; ``(nan, nan)`` for a solid bat.
-    """
-    d = np.asarray(bat.outer_diameter, dtype=float)
-    hollow = np.asarray(bat.inner_diameter, dtype=float) > 0
+    inner = np.asarray(bat.inner_diameter, dtype=float)
+    hollow = inner > 0
     if bat.construction != "hollow" or not np.any(hollow):
-        return float("nan"), float("nan")
-    full = hollow & (d >= _BARREL_DIAMETER_FRACTION * d[hollow].max())
-    i = int(np.argmax(np.where(hollow, d, -np.inf)))
-    lo = i
-    while lo > 0 and full[lo - 1]:
-        lo -= 1
-    hi = i
-    while hi < d.size - 1 and full[hi + 1]:
-        hi += 1
-    return float(bat.z_edges[lo]), float(bat.z_edges[hi + 1])
-
-
-def default_effective_width(bat: BatModel) -> float | None:
-    """Half the full-diameter barrel length [m] (the (2, 1) hoop mode's modal width; module
-    notes), or None for a solid bat."""
-    z0, z1 = barrel_region(bat)
-    return None if not np.isfinite(z0) else 0.5 * (z1 - z0)
-
-
-def axial_shape(bat: BatModel, z_impact) -> np.ndarray:
-    """``sin(pi (z - z0) / L_b)`` of the (2, 1) hoop mode at impact positions, 0 off the barrel."""
-    z0, z1 = barrel_region(bat)
-    z = np.atleast_1d(np.asarray(z_impact, dtype=float))
-    if not np.isfinite(z0):
-        return np.zeros_like(z)
-    x = (z - z0) / (z1 - z0)
-    return np.where((x > 0) & (x < 1), np.sin(np.pi * np.clip(x, 0, 1)), 0.0)
-
-
-def barrel_spring_at(bat: BatModel, z_impact, effective_width=None):
-    """Barrel spring-mass at impact positions of a bat, from the slice under each impact.
-
-    Parameters
-    ----------
-    bat : BatModel
-        Uses ``outer_diameter``, ``inner_diameter``, ``material`` and ``barrel_effective_width``.
-    z_impact : array_like
-        Impact positions from the knob [m], shape (p,).
-    effective_width : float, optional
-        Overrides ``bat.barrel_effective_width`` [m].
-
-    Returns
-    -------
-    tuple of numpy.ndarray or None
-        ``(stiffness [N/m], mass [kg])``, each of shape (p,): :func:`barrel_spring` with the outer
-        radius and wall of the slice holding each impact, divided by the squared axial shape
-        ``sin^2(pi x / L_b)`` of the (2, 1) hoop mode (module notes). Off the full-diameter barrel
-        (or where the shape is below 0.05) the stiffness is ``inf`` and the mass 0 (no spring).
-        ``None`` for a solid bat.
-
-    Raises
-    ------
-    ValueError
-        For a hollow bat without an effective width.
-    """
-    if bat.construction != "hollow":
         return None
-    b = bat.barrel_effective_width if effective_width is None else effective_width
-    if b is None:
-        b = default_effective_width(bat)
-    if b is None:
-        raise ValueError(f"hollow bat {bat.name!r} has no hollow barrel")
-    z = np.atleast_1d(np.asarray(z_impact, dtype=float))
+    outer = np.asarray(bat.outer_diameter, dtype=float)
+    i = int(np.argmax(np.where(hollow, outer, -np.inf)))
+    lo = hi = i
+    while lo > 0 and hollow[lo - 1]:
+        lo -= 1
+    while hi < outer.size - 1 and hollow[hi + 1]:
+        hi += 1
+    sl = slice(lo, hi + 1)
+    mid_radius = 0.25 * (outer[sl] + inner[sl])  # (outer - wall) / 2
+    z_mid = bat.z_mid[sl]
+    z = bat.z_edges[lo:hi + 2]
+    r = np.interp(z, z_mid, mid_radius)
+    area = 0.25 * np.pi * (outer[sl] ** 2 - inner[sl] ** 2)
+    density = bat.linear_density[sl] / area * bat.barrel_mass_scale
+    young = np.full(z_mid.size, bat.material.youngs_modulus * bat.barrel_stiffness_scale)
+    return ShellOfRevolution(z, r, 0.5 * (outer[sl] - inner[sl]), density, young,
+                             bat.material.poisson_ratio, ("closed", bat.barrel_end))
+
+
+@dataclass(frozen=True)
+class BarrelModes:
+    """Everything the engine needs of a barrel, computed once per bat (cached).
+
+    Loads and read-outs of the normal displacement only touch the ``W`` and ``W'`` unknowns of
+    the nodes, so each order is reduced to them ("W space", ``2 N`` unknowns for ``N`` nodes,
+    the same for every order): ``green[n]`` is the static flexibility between them (order 0
+    with inertia relief), ``shapes[n]`` the kept modes' ``W``, ``W'`` at the nodes.
+    """
+
+    shell: ShellOfRevolution
+    orders: tuple[int, ...]  # 0, 2 .. static_orders
+    green: tuple[np.ndarray, ...]  # (2N, 2N) per order
+    omega: np.ndarray  # kept modes, order by order [rad/s], (m,)
+    mode_orders: np.ndarray  # the order of each kept mode, (m,)
+    shapes: np.ndarray  # W space shapes of the kept modes, mass-normalised, (2N, m)
+
+
+def _orders(highest: int) -> list[int]:
+    return [0] + list(range(2, highest + 1))
+
+
+def _w_space(system: HarmonicSystem, n_nodes: int) -> np.ndarray:
+    """Full-vector dof of ``W``, ``W'`` at every node, in W-space order, (2N,)."""
+    base = system.node_dofs * np.arange(n_nodes)[:, None] + system.w_offset
+    return (base + np.arange(2)[None, :]).ravel()
+
+
+def _banded(a: np.ndarray, upper: int) -> np.ndarray:
+    """Upper banded storage of a symmetric matrix for ``scipy.linalg.cholesky_banded``."""
+    ab = np.zeros((upper + 1, a.shape[0]))
+    for k in range(upper + 1):
+        ab[upper - k, k:] = np.diagonal(a, k)
+    return ab
+
+
+def _green(system: HarmonicSystem, w_dofs: np.ndarray) -> np.ndarray:
+    """Static flexibility between the W-space unknowns of one order (banded Cholesky)."""
+    position = np.full(w_dofs.max() + system.node_dofs + 1, -1)
+    position[system.free] = np.arange(system.free.size)
+    rows = position[w_dofs]
+    load = np.zeros((system.free.size, w_dofs.size))
+    ok = rows >= 0  # W of a closed end is held: no flexibility there
+    load[rows[ok], np.flatnonzero(ok)] = 1.0
+    upper = 2 * system.node_dofs - 1
+    factor = scipy.linalg.cholesky_banded(_banded(system.stiffness, upper), check_finite=False)
+    if system.rigid is None:
+        x = scipy.linalg.cho_solve_banded((factor, False), load, check_finite=False)
+    else:  # inertia relief against the axial translation (see shell.static_solve)
+        mr = system.mass @ system.rigid
+        x = scipy.linalg.cho_solve_banded((factor, False),
+                                          load - np.outer(mr, system.rigid @ load),
+                                          check_finite=False)
+        x -= np.outer(system.rigid, mr @ x)
+    green = np.zeros((w_dofs.size, w_dofs.size))
+    green[ok] = x[rows[ok]]
+    return 0.5 * (green + green.T)
+
+
+def compute_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
+                         dynamic_orders: int = DYNAMIC_ORDERS,
+                         static_orders: int = STATIC_ORDERS) -> BarrelModes | None:
+    """The barrel's modes up to ``max_frequency`` [Hz] in orders ``0, 2..dynamic_orders`` and
+    the static flexibility of orders ``0, 2..static_orders``; None for a solid bat."""
+    shell = barrel_shell(bat)
+    if shell is None:
+        return None
+    assembler = Assembler(shell)
+    n_nodes = shell.z.size
+    green, omega, orders, shapes = [], [], [], []
+    for n in _orders(static_orders):
+        supported = assembler.system(n, support=True)
+        w_dofs = _w_space(supported, n_nodes)
+        green.append(_green(supported, w_dofs))
+        if n <= dynamic_orders:
+            free = supported if n else assembler.system(0)
+            modes = harmonic_modes(shell, n, max_frequency, free)
+            omega.append(modes.omega)
+            orders.append(np.full(modes.omega.size, n))
+            shapes.append(modes.vectors[w_dofs])
+    return BarrelModes(shell, tuple(_orders(static_orders)), tuple(green),
+                       np.concatenate(omega), np.concatenate(orders),
+                       np.concatenate(shapes, axis=1))
+
+
+_CACHE: OrderedDict[tuple, BarrelModes | None] = OrderedDict()
+
+
+def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
+                        dynamic_orders: int = DYNAMIC_ORDERS,
+                        static_orders: int = STATIC_ORDERS) -> BarrelModes | None:
+    """:func:`compute_barrel_modes` memoised on the bat's content (LRU, 16 entries)."""
+    h = hashlib.sha256()
+    for a in (bat.z_edges, bat.outer_diameter, bat.inner_diameter, bat.linear_density):
+        h.update(np.ascontiguousarray(a, dtype=float).tobytes())
+    key = (h.hexdigest(), bat.construction, bat.material, bat.barrel_stiffness_scale,
+           bat.barrel_mass_scale, bat.barrel_end, float(max_frequency), int(dynamic_orders),
+           int(static_orders))
+    if key in _CACHE:
+        _CACHE.move_to_end(key)
+        return _CACHE[key]
+    out = compute_barrel_modes(bat, max_frequency, dynamic_orders, static_orders)
+    _CACHE[key] = out
+    while len(_CACHE) > 16:
+        _CACHE.popitem(last=False)
+    return out
+
+
+def _w_load(shell: ShellOfRevolution, points: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """Each impact's patch as W-space load (unit resultant), shape (p, 2N)."""
+    p = points.shape[0]
+    inside = (points >= shell.z[0]) & (points <= shell.z[-1])
+    e = np.clip(np.searchsorted(shell.z, points, side="right") - 1, 0, shell.n_elements - 1)
+    xi = np.clip((points - shell.z[e]) / (shell.z[e + 1] - shell.z[e]), 0.0, 1.0)
+    L = shell.lengths[e]
+    h = np.stack([1 - 3 * xi**2 + 2 * xi**3, L * (xi - 2 * xi**2 + xi**3),
+                  3 * xi**2 - 2 * xi**3, L * (-xi**2 + xi**3)], axis=-1)
+    h *= (weights * inside)[..., None]
+    cols = 2 * e[..., None] + np.arange(4)
+    g = np.zeros((p, 2 * shell.z.size))
+    np.add.at(g, (np.broadcast_to(np.arange(p)[:, None, None], cols.shape), cols), h)
+    return g
+
+
+def patch_half_angle(bat: BatModel, z: np.ndarray, half_length: np.ndarray) -> np.ndarray:
+    """Half-angle [rad] of the ball's contact arc, ``a / R_outer`` at each impact, at most pi/2."""
     edges = np.asarray(bat.z_edges, dtype=float)
     s = np.clip(np.searchsorted(edges, z, side="right") - 1, 0, edges.size - 2)
-    r_out = 0.5 * bat.outer_diameter[s]
-    inner = 0.5 * bat.inner_diameter[s]
-    shape = axial_shape(bat, z)
-    hollow = (inner > 0) & (shape >= _MIN_AXIAL_SHAPE)
-    stiffness = np.full(z.shape, np.inf)
-    mass = np.zeros(z.shape)
-    if np.any(hollow):
-        k, m = barrel_spring(r_out[hollow], (r_out - inner)[hollow], bat.material, b)
-        stiffness[hollow], mass[hollow] = k / shape[hollow] ** 2, m / shape[hollow] ** 2
-    return stiffness, mass
+    return np.minimum(half_length / (0.5 * bat.outer_diameter[s]), 0.5 * np.pi)
+
+
+@dataclass(frozen=True)
+class BarrelResponse:
+    """The barrel as the ball meets it at each of ``p`` impacts."""
+
+    omega: np.ndarray  # kept modes [rad/s], (m,)
+    gain: np.ndarray  # normal displacement per modal coordinate at the patch [1/sqrt(kg)], (p, m)
+    residual: np.ndarray  # quasi-static compliance of everything left out [m/N], (p,)
+    static: np.ndarray  # total quasi-static compliance of the patch load [m/N], (p,)
+    orders: np.ndarray  # order n of each kept mode, (m,)
+
+
+def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray,
+                    half_angle: np.ndarray) -> BarrelResponse:
+    """Modal gains and residual compliance for patch loads.
+
+    Parameters
+    ----------
+    barrel : BarrelModes
+        From :func:`cached_barrel_modes`.
+    points : numpy.ndarray
+        Axial sample points of each impact's patch [m from knob], shape (p, K).
+    weights : numpy.ndarray
+        Their weights, each row summing to 1, shape (p, K).
+    half_angle : numpy.ndarray
+        Circumferential half-angle of each patch [rad], shape (p,).
+
+    Returns
+    -------
+    BarrelResponse
+        ``gain[i, j] = c_n(beta_i) sum_k weights[i, k] W_j(points[i, k])``; ``static`` is
+        ``sum_n c_n^2 f^T K_n^-1 f`` over the orders 0, 2..STATIC_ORDERS with ``f`` the
+        consistent load of the axial patch; ``residual`` is ``static`` minus the kept modes'
+        ``sum (gain / omega)^2``.
+    """
+    g = _w_load(barrel.shell, points, weights)  # (p, 2N)
+    c = np.stack([circumferential_factor(n, half_angle) for n in barrel.orders])  # (orders, p)
+    static = np.zeros(points.shape[0])
+    angles, which = np.unique(np.round(half_angle, 12), return_inverse=True)
+    for k in range(angles.size):  # impacts of one patch size share sum_n c_n^2 G_n
+        rows = which == k
+        total = sum(c[i, np.flatnonzero(rows)[0]] ** 2 * gr for i, gr in enumerate(barrel.green))
+        static[rows] = np.einsum("pi,ij,pj->p", g[rows], total, g[rows])
+    order_row = {n: i for i, n in enumerate(barrel.orders)}
+    factor = c[[order_row[n] for n in barrel.mode_orders]].T  # (p, m)
+    gain = factor * (g @ barrel.shapes)
+    modal = (gain**2 / barrel.omega**2).sum(axis=1)
+    return BarrelResponse(barrel.omega, gain, np.clip(static - modal, 0.0, None), static,
+                          barrel.mode_orders)
+
+
+def hoop_frequency(bat: BatModel) -> float | None:
+    """The barrel's lowest hoop (n = 2) frequency [Hz], as an impact-hammer test on the free bat
+    measures it; None for a solid bat."""
+    shell = barrel_shell(bat)
+    if shell is None:
+        return None
+    lam = scipy.linalg.eigh(*_pair(assemble(shell, 2)), eigvals_only=True,
+                            subset_by_index=(0, 0), check_finite=False)
+    return float(np.sqrt(lam[0]) / (2 * np.pi))
+
+
+def _pair(system: HarmonicSystem) -> tuple[np.ndarray, np.ndarray]:
+    return system.stiffness, system.mass
+
+
+def compression_stiffness(bat: BatModel, position: float, platen_width: float) -> float:
+    """Static stiffness of the barrel squeezed between two flat platens [N/m].
+
+    Two equal and opposite line loads at ``theta = 0`` and ``pi``, each spread uniformly over
+    ``platen_width`` [m] along the bat around ``position`` [m from knob]: the force on one
+    platen divided by the platens' approach (the even orders 0, 2, 4 .. ``STATIC_ORDERS``;
+    the beam's bending, order 1, cancels). Shell theory only: the local crushing under a
+    narrow platen edge is not modelled.
+    """
+    shell = barrel_shell(bat)
+    if shell is None:
+        raise ValueError("a solid bat has no barrel to compress")
+    half = 0.5 * platen_width
+    if not (shell.z[0] <= position - half and position + half <= shell.z[-1]):
+        raise ValueError("the platens do not lie on the hollow barrel")
+    k_pts = 16
+    zs = position + half * (np.arange(k_pts) + 0.5) / k_pts * 2 - half
+    w = np.full(k_pts, 1.0 / k_pts)
+    approach = 0.0
+    for n in range(0, STATIC_ORDERS + 1, 2):
+        system = assemble(shell, n, support=True)
+        cols, h = normal_reader(shell, n, zs)
+        f = np.zeros(system.node_dofs * shell.z.size)
+        np.add.at(f, cols.ravel(), (h * w[:, None]).ravel())
+        f_free = f[system.free][:, None]
+        factor = scipy.linalg.cho_factor(system.stiffness, check_finite=False)
+        x = static_solve(system, factor, f_free)
+        approach += 2.0 * 2.0 * float(f_free[:, 0] @ x[:, 0])  # both loads; both platens
+    return 1.0 / approach

@@ -38,7 +38,11 @@ class BatModel:
     shear_stiffness: np.ndarray  # kappa * G * A [N], shape (n,)
     point_masses: tuple[tuple[float, float], ...]  # (z from knob [m], mass [kg]) after reconciliation
     material: Material
-    barrel_effective_width: float | None = None  # hoop-mode modal width [m]; None: barrel.default_effective_width
+    # hollow bats: the barrel shell's calibration (batcert.model.calibrate) and its tip end,
+    # "closed" (held round by the end cap) or "free" (batcert.physics.barrel)
+    barrel_stiffness_scale: float = 1.0  # on the wall's Young's modulus in the shell [-]
+    barrel_mass_scale: float = 1.0  # on the wall's density in the shell [-]
+    barrel_end: str = "closed"
     extras: dict = field(default_factory=dict)
 
     @property

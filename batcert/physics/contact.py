@@ -19,17 +19,22 @@ How the parameters come from the spec
 ``k1`` and ``alpha`` are taken from the ball spec (:class:`~batcert.physics.ball.BallModel`;
 Nathan's ball: ``k1 = 6.53e7 N/m^1.84``, ``alpha = 1.84``). Real balls lose COR with speed, which a
 single ``e0`` cannot express; the spec instead lists the rigid-wall COR at one or more speeds
-(``BallModel.cor(speed)``, piecewise linear, constant outside the listed range). The flexible
-engine therefore sets ``e0`` **per impact** to ``ball.cor(v_rel)``, with ``v_rel = w1 r - v_p``
-the relative normal speed of that impact. Because the law's rigid-wall COR is exactly ``e0``, a
-ball fired at a rigid wall at speed ``v`` rebounds with exactly ``ball.cor(v)``: the spec is
-honoured at every speed, and against a bat the same ball loses the same fraction of the energy
-it stores. (The rigid engine uses ``ball.cor(v_rel)`` as the ball-bat COR directly, which is
-the same statement for a rigid bat.) Two consequences to keep in mind: a ball meeting a recoiling
-bat at ``v_rel`` is compressed less than one hitting a wall at ``v_rel``, yet it is given the
-wall's COR at ``v_rel`` (the spec has no other information); and energy stored in the *bat's*
-compliance escapes the ball's loss, so even a very stiff bat returns a ball-bat COR slightly
-above ``e0`` (see :mod:`batcert.physics.flexible`).
+(``BallModel.cor(speed)``, piecewise linear, constant outside the listed range).
+
+Which ``e0`` an impact gets: by default the ball's loss follows its own deformation. Against a
+rigid wall at speed ``v`` the ball compresses to ``u_m(v)`` (:func:`max_compression`) and keeps
+``ball.cor(v)^2`` of the energy it stored. Against a bat it is squeezed less: the bat recoils
+(reduced mass ``m M / (m + M)``) and a hollow barrel takes part of the deformation (the
+trampoline). batcert gives each impact ``e0 = ball.cor(v_eq)`` with ``v_eq`` the wall speed that
+compresses the ball as far as the impact does so far (:func:`compression_cor`), re-evaluated as
+the ball compresses, so ``e0`` is fixed once the compression has peaked; the restitution branch
+that follows uses it. A ball fired at a rigid wall therefore still rebounds with exactly
+``ball.cor(v)``, and a ball that meets a compliant barrel loses less, which is the mechanism of
+the 2001 study. For a rigid pivoted bat the peak compression is that of a wall impact at
+``v_rel / sqrt(1 + k)`` (``k`` the recoil factor), which the rigid engine uses in closed form.
+(batcert 0.1 used ``ball.cor(v_rel)`` whatever the compression; the flexible engine keeps that
+as ``ball_loss="relative-speed"``.) Energy stored in the *bat's* own compliance escapes the
+ball's loss, so even a very stiff bat returns a ball-bat COR slightly above ``e0``.
 
 Units: SI throughout ([m], [N], [s], [kg]).
 """
@@ -42,8 +47,9 @@ import numpy as np
 
 from batcert.physics.ball import BallModel
 
-__all__ = ["RigidWallImpact", "ball_wall_impact", "contact_force", "deformation_work",
-           "max_compression", "peak_force", "restitution_exponent", "rigid_wall_impact"]
+__all__ = ["RigidWallImpact", "ball_wall_impact", "compression_cor", "compression_restitution",
+           "contact_force", "deformation_work", "equivalent_wall_speed", "max_compression",
+           "peak_force", "restitution_exponent", "rigid_wall_impact"]
 
 
 def restitution_exponent(alpha, e0):
@@ -160,6 +166,47 @@ def max_compression(speed, mass, k1, alpha):
     """
     v = np.abs(np.asarray(speed, dtype=float))
     return ((1.0 + alpha) * mass * v**2 / (2.0 * k1)) ** (1.0 / (1.0 + alpha))
+
+
+def equivalent_wall_speed(compression, mass, k1, alpha):
+    """The rigid-wall impact speed that compresses the ball by ``compression`` [m/s]:
+    ``v = sqrt(2 k1 u^(1+alpha) / ((1+alpha) m))``, the inverse of :func:`max_compression`
+    (the ball has then stored the same energy, ``k1 u^(1+alpha) / (1+alpha)``).
+
+    Parameters
+    ----------
+    compression : array_like
+        Largest compression of the ball [m].
+    mass : float
+        Ball mass [kg].
+    k1, alpha : float
+        Compression law [N/m^alpha], [-].
+    """
+    u = np.clip(np.asarray(compression, dtype=float), 0.0, None)
+    return np.sqrt(2.0 * k1 * u ** (1.0 + alpha) / ((1.0 + alpha) * mass))
+
+
+def compression_cor(ball: BallModel, compression) -> np.ndarray:
+    """The ball's COR for a collision in which it is compressed by ``compression`` [m]: its
+    rigid-wall COR (``ball.cor``) at the :func:`equivalent_wall_speed`.
+
+    A ball's loss grows with how hard it is squeezed; its COR is measured against a rigid wall,
+    where all the relative kinetic energy goes into the ball. Against a recoiling bat (reduced
+    mass ``m M / (m + M)``) or a compliant barrel the ball is squeezed less and, by this rule,
+    loses the fraction of its stored energy that a wall impact storing the same energy loses.
+    """
+    return np.asarray(ball.cor(equivalent_wall_speed(compression, ball.mass, ball.k1,
+                                                     ball.alpha)), dtype=float)
+
+
+def compression_restitution(ball: BallModel):
+    """``beta(u_top)``: the restitution exponent of :func:`restitution_exponent` for the
+    :func:`compression_cor` at the largest compression so far, for :func:`march` to re-evaluate
+    as the ball compresses (fixed once the compression has peaked)."""
+    def beta(u_top):
+        e0 = compression_cor(ball, u_top)
+        return (1.0 + ball.alpha) / e0**2 - 1.0
+    return beta
 
 
 def peak_force(speed, mass, k1, alpha):

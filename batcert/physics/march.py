@@ -55,8 +55,7 @@ class LinearSystem:
     gain: np.ndarray  # mode shape at the contact point, ``g`` [1/sqrt(kg)], (n, K)
     rigid_mass: np.ndarray  # rigid mass met at the contact point (bat + barrel) [kg], (n,)
     ball_mass: float  # [kg]
-    barrel_readout: np.ndarray | None = None  # barrel compression per modal coordinate, (n, K)
-    barrel_stiffness: np.ndarray | None = None  # [N/m], (n,); 0 where no barrel
+    shell_columns: np.ndarray | None = None  # (K,) bool: the hollow barrel's shell modes
 
     @property
     def inv_reduced_mass(self) -> np.ndarray:
@@ -74,7 +73,7 @@ class Separation:
     peak_force: np.ndarray  # [N], (n,)
     max_compression: np.ndarray  # [m], (n,)
     modal: np.ndarray  # complex modal coordinates Z = p - conj(lambda) q, (n, K)
-    barrel_share: np.ndarray | None  # barrel's share of the peak stored energy [-], (n,)
+    barrel_share: np.ndarray | None  # shell's share of the peak stored energy [-], (n,)
 
 
 @dataclass
@@ -98,7 +97,7 @@ class _Coefficients:
     R: np.ndarray  # (n, rows, 2K)
     beta: np.ndarray
     ab: np.ndarray  # alpha - beta
-    kh: np.ndarray  # barrel stiffness [N/m], 0 without a barrel
+    shell_energy: np.ndarray  # (n, K): shell potential energy = sum shell_energy * Im(Z)^2
 
     def take(self, keep: np.ndarray) -> _Coefficients:
         return _Coefficients(**{k: v[keep] for k, v in vars(self).items()})
@@ -154,21 +153,23 @@ def _coefficients(system: LinearSystem, h: float, alpha: float, beta) -> _Coeffi
         wt[:, 0::2], wt[:, 1::2] = coef.imag, coef.real
         return wt
 
-    # read-outs: free y after h/2 and h, y' now (= Im(sum (i g - zeta om c_y) Z)), barrel now
+    # read-outs: free y after h/2 and h, y' now (= Im(sum (i g - zeta om c_y) Z))
     rows = [im_weights(c_y * e2), im_weights(c_y * e1), im_weights(1j * g - zeta * om * c_y)]
-    if system.barrel_readout is not None:
-        rows.append(im_weights(system.barrel_readout / om_d + 0j))
     inv_mu = system.inv_reduced_mass
     ka = -(c_y * g * q_half.imag).sum(1)
     kn = [(c_y * forcing[:, i, :].imag).sum(1) - (h * h / 6 * inv_mu if i < 2 else 0.0)
           for i in range(3)]
     beta = np.broadcast_to(np.asarray(beta, dtype=float), (n,)).copy()
-    kh = system.barrel_stiffness if system.barrel_stiffness is not None else np.zeros(n)
+    shell = np.zeros((n, k_modes))
+    if system.shell_columns is not None:  # potential 0.5 omega^2 q^2 with q = Im(Z) / om_d
+        cols = system.shell_columns
+        shell[:, cols] = 0.5 * (om[:, cols] / om_d[:, cols]) ** 2
     return _Coefficients(
         ka=ka, b0=-h * h / 4 * inv_mu, c0=-(c_y * g * (e2 * q_half).imag).sum(1) - ka,
         cb=2 * ka, ca=-h * h / 2 * inv_mu, n0=kn[0], n1=kn[1], n2=kn[2], w6=-h * h / 6 * inv_mu,
         v6=-h / 6 * inv_mu, e1=e1, B=np.ascontiguousarray(forcing).view(float),
-        R=np.ascontiguousarray(np.stack(rows, axis=1)), beta=beta, ab=alpha - beta, kh=kh)
+        R=np.ascontiguousarray(np.stack(rows, axis=1)), beta=beta, ab=alpha - beta,
+        shell_energy=shell)
 
 
 def _step(st: _State, c: _Coefficients, h: float, force,
@@ -188,10 +189,10 @@ def _step(st: _State, c: _Coefficients, h: float, force,
     st.u_prev, st.du_prev = st.u, du
     l_top = np.log(st.u_top)
     f0 = force(st.u, l_top)
-    if barrel_law is not None:  # the barrel's share of the stored energy when the total peaks
+    if barrel_law is not None:  # the shell's share of the stored energy when the total peaks
         k1, alpha = barrel_law
         stored = contact.deformation_work(st.u, st.u_top, k1, alpha, c.beta)
-        barrel = 0.5 * c.kh * base[:, 3] ** 2
+        barrel = (c.shell_energy * st.z.imag**2).sum(1)
         up = stored + barrel > st.e_peak
         st.e_peak = np.where(up, stored + barrel, st.e_peak)
         st.share = np.where(up, barrel / np.where(up, stored + barrel, 1.0), st.share)
@@ -212,7 +213,7 @@ def _step(st: _State, c: _Coefficients, h: float, force,
 
 
 def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, time_step: float,
-          max_time: float) -> Separation:
+          max_time: float, restitution=None) -> Separation:
     """Integrate all impacts from first touch to separation (ETDRK4; module notes).
 
     State per impact (:class:`_State`): complex modal coordinates ``Z`` (n, K), the merged
@@ -238,11 +239,15 @@ def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, t
         Step [s].
     max_time : float
         Safety cap on the contact time [s].
+    restitution : callable, optional
+        ``beta(u_top)``: the restitution exponent as a function of the largest compression so
+        far [m] (:func:`contact.compression_restitution`), re-evaluated every step; without it
+        ``beta`` stays as given.
     """
     h = float(time_step)
     n, k_modes = system.omega.shape
     c = _coefficients(system, h, alpha, beta)
-    hollow = system.barrel_readout is not None
+    hollow = system.shell_columns is not None
     lk1 = np.log(k1)
 
     def force(x, l_top):  # contact_force() in log form, both branches in one exp
@@ -266,6 +271,9 @@ def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, t
 
     t = 0.0
     for _ in range(int(np.ceil(max_time / h))):
+        if restitution is not None:  # the ball's loss follows its compression so far
+            c.beta = restitution(st.u_top)
+            c.ab = alpha - c.beta
         u_new = _step(st, c, h, force, (k1, alpha) if hollow else None)
         t += h
         done = (u_new <= 0.0) & (st.u > 0.0)  # separation; finished rows are parked at u = -1 m

@@ -125,6 +125,24 @@ def engine_table(result: RunResult) -> Table:
     return Table(["Setting or diagnostic", "Value"], rows)
 
 
+def barrel_note(result: RunResult) -> str:
+    """The certificate's sentence on the barrel of a hollow bat: calibrated, or the range of
+    the result over the plausible barrel."""
+    b = result.barrel
+    if b is None:
+        return ""
+    hoop = f"model hoop frequency {b.hoop_frequency:.0f} Hz"
+    if b.calibrated:
+        return f"Barrel {b.basis} ({hoop})."
+    low, high = (fmt.metric_value(v, result.metric) for v in (b.value_low, b.value_high))
+    text = (f"Barrel {b.basis}: {fmt.metric_word(result.metric)} from {low} to {high} "
+            f"({hoop})")
+    if b.verdicts:
+        text += ("; the verdict is " + b.verdicts[0] + " throughout" if len(b.verdicts) == 1
+                 else "; the verdict changes within this range")
+    return text + "."
+
+
 def run_view(result: RunResult) -> dict[str, Any]:
     """Everything a run report shows, formatted; the templates only arrange it."""
     mp = result.mass_properties
@@ -133,6 +151,7 @@ def run_view(result: RunResult) -> dict[str, Any]:
         "title": f"{result.bat} \u2014 {result.protocol}",
         "metric_name": fmt.metric_name(result.metric),
         "verdict": verdict(result),
+        "barrel_note": barrel_note(result),
         "header": header_rows(result),
         "header_table": Table(["Item", "Value"], [list(r) for r in header_rows(result)]),
         "date": fmt.created(result.created),

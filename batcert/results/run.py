@@ -72,6 +72,22 @@ class MassProperties:
 
 
 @dataclass
+class BarrelRange:
+    """How sure the barrel of a hollow bat is: calibrated to a measurement, or the range of
+    the result over the plausible barrel (batcert.runner.barrel_range)."""
+
+    calibrated: bool  # the barrel shell was calibrated to a measured hoop frequency/compression
+    basis: str  # what calibrated it, or what the range spans, in words
+    hoop_frequency: float  # the model's barrel hoop (n = 2) frequency [Hz]
+    measured_hoop_frequency: float | None  # [Hz]
+    stiffness_scales: list[float]  # barrel stiffness scales explored [-] (empty if calibrated)
+    loss_factors: list[float]  # wall loss factors explored [-] (empty if calibrated)
+    value_low: float | None  # smallest aggregated metric over the range (None if calibrated)
+    value_high: float | None  # largest
+    verdicts: list[str]  # the distinct verdicts over the range ("pass", "fail"), if a limit
+
+
+@dataclass
 class InputFile:
     role: str  # "bat" | "protocol" | "ball"
     name: str
@@ -105,4 +121,5 @@ class RunResult(Serialisable):
     batcert_version: str
     created: str  # ISO 8601 UTC timestamp
     warnings: list[str] = field(default_factory=list)
-    extras: dict[str, Any] = field(default_factory=dict)  # engine diagnostics (modes, barrel)
+    extras: dict[str, Any] = field(default_factory=dict)  # the bat's dynamics (modes, barrel)
+    barrel: BarrelRange | None = None  # hollow bats with the flexible engine

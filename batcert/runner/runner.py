@@ -23,7 +23,8 @@ from batcert.model.diagnostics import bat_dynamics
 from batcert.model.mass import mass_properties
 from batcert.physics import rigid
 from batcert.physics.batmodel import BatModel
-from batcert.results.run import ConditionResult, InputFile, MassProperties, RunResult, Sweep
+from batcert.results.run import BarrelRange, ConditionResult, InputFile, MassProperties, RunResult, Sweep
+from batcert.runner.barrel_range import barrel_range
 from batcert.runner.conditions import Condition, conditions_from_spec
 from batcert.runner.locate import Search, locate
 from batcert.specs.ball import BallSpec
@@ -155,8 +156,10 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
     _check_on_bat(choice, rule.name, search.peaks.tip)
     final, diag = bench.solve(conds, choice.location[:, None])
     values = metric.value(final)[:, 0]
-    value = AGGREGATES[p.aggregate].combine(values)
+    aggregate = AGGREGATES[p.aggregate]
+    value = aggregate.combine(values)
     margin, verdict = decide(value, p.limit)
+    barrel = barrel_range(bench, conds, choice.location, metric, aggregate, p.limit)
     inputs = [InputFile("bat", built.spec.name, built.spec.path, built.spec.sha256),
               InputFile("protocol", p.id, p.path, p.sha256),
               InputFile("ball", ball.name, ball.path, ball.sha256)]
@@ -171,4 +174,16 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
                                       ball.model.mass),
         inputs=inputs, batcert_version=__version__,
         created=created or _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
-        warnings=_warnings(p, conds, choice, engine), extras=bat_dynamics(built, p.pivot))
+        warnings=_warnings(p, conds, choice, engine) + _barrel_warning(barrel, metric.display),
+        extras=bat_dynamics(built, p.pivot), barrel=barrel)
+
+
+def _barrel_warning(barrel: BarrelRange | None, metric: str) -> list[str]:
+    if barrel is None or barrel.calibrated:
+        return []
+    text = (f"the barrel was not calibrated by a measurement (hoop frequency or compression): "
+            f"the {metric} spans {barrel.value_low:.4f} to {barrel.value_high:.4f} over the "
+            "plausible barrel")
+    if len(barrel.verdicts) > 1:
+        text += ", and the verdict changes within that range"
+    return [text]

@@ -81,7 +81,18 @@ def _check_measured(v: dict, data: Located, errors: Collector, path: str) -> Non
     del line
 
 
-MEASURED_SCHEMA = Schema("measured mass properties", (
+COMPRESSION_SCHEMA = Schema("barrel compression test", (
+    Field("force", quantity("force", positive=True), "Force on one platen at the deflection.",
+          required=True),
+    Field("deflection", quantity("length", positive=True), "Approach of the two platens "
+          "(change of the barrel's diameter between them).", required=True),
+    Field("position", quantity("length", positive=True), "Centre of the platens, from the "
+          "tip.", required=True),
+    Field("platen_width", quantity("length", positive=True), "Length of barrel each flat "
+          "platen touches (along the bat).", required=True),
+))
+
+MEASURED_SCHEMA = Schema("measured properties", (
     Field("pivot", quantity("length", minimum=0.0), "Pivot of the MOI (and origin of `cg`), "
           "from the knob end.", default=DEFAULT_PIVOT),
     Field("mass", quantity("mass", positive=True), "Measured mass.", required=True),
@@ -96,6 +107,13 @@ MEASURED_SCHEMA = Schema("measured mass properties", (
           "the pivot; I = M g (BP - pivot) T^2 / (4 pi^2). Alternative to moi."),
     Field("first_bending_frequency", quantity("frequency", positive=True), "Measured free-free "
           "first bending frequency; EI and kappa G A are scaled together so the model matches it."),
+    Field("hoop_frequency", quantity("frequency", positive=True), "Hollow bats: the barrel's "
+          "lowest hoop (n = 2) frequency measured on the free bat (impact hammer and "
+          "accelerometer on the barrel); the barrel shell is calibrated to it "
+          "(docs/physics.md)."),
+    Field("barrel_compression", section(COMPRESSION_SCHEMA), "Hollow bats: a barrel "
+          "compression test; with hoop_frequency it sets the shell's stiffness, and the "
+          "frequency then its mass."),
 ), checks=(_check_measured,))
 
 
@@ -106,6 +124,11 @@ def _check_bat(v: dict, data: Located, errors: Collector, path: str) -> None:
     if v["construction"] == "solid" and v["wall"] is not None:
         errors.add(lookup(data, "wall")[0], "wall", "a solid bat has no wall; remove `wall` or set "
                    "`construction: hollow`")
+    measured = v["measured"] or {}
+    for key in ("hoop_frequency", "barrel_compression"):
+        if v["construction"] == "solid" and measured.get(key) is not None:
+            errors.add(lookup(data, "measured", key)[0], f"measured.{key}", "only a hollow bat "
+                       "has a barrel to measure")
     z, d = v["profile"]
     if z[-1] > v["length"] * (1 + 1e-9) or z[0] < 0:
         errors.add(lookup(data, "profile")[0], "profile", f"stations must lie between the knob "
@@ -133,13 +156,13 @@ BAT_SCHEMA = Schema("bat", (
           default=0.0),
     Field("shear_correction", number(exclusive_minimum=0.0, maximum=1.5), "Timoshenko shear "
           "coefficient kappa; default 6(1+nu)/(7+6nu) solid, 2(1+nu)/(4+3nu) hollow."),
-    Field("barrel_effective_width", quantity("length", positive=True), "Modal width of the "
-          "barrel's hoop mode (hollow bats); default half the full-diameter barrel length "
-          "(docs/physics.md)."),
+    Field("barrel_end", choice("closed", "open"), "Hollow bats: the barrel's tip end is held "
+          "round by its end cap (closed) or free to oval (open).", default="closed"),
     Field("slice_length", quantity("length", positive=True, maximum=0.02), "Beam slice length.",
           default=0.01),
-    Field("measured", section(MEASURED_SCHEMA), "Measured mass properties; the model is "
-          "reconciled to match them exactly."),
+    Field("measured", section(MEASURED_SCHEMA), "What a lab measured: mass properties (the "
+          "model is reconciled to match them exactly), frequencies and barrel compression (the "
+          "model is calibrated to them)."),
     Field("reconcile", choice("density-profile", "point-masses", "none"), "How the model is "
           "corrected to the measured values (docs/reconciliation.md).", default="density-profile"),
 ), checks=(_check_bat,))
@@ -157,6 +180,9 @@ class MeasuredSpec:
     radius_of_gyration: float | None  # about the CG [m]
     pendulum_period: float | None  # ASTM F2398 period about the pivot [s]
     first_bending_frequency: float | None  # free-free [Hz]
+    hoop_frequency: float | None  # barrel, lowest n = 2, free bat [Hz]
+    barrel_compression: dict | None  # force [N], deflection [m], position [m from tip],
+    # platen_width [m]
 
 
 @dataclass(frozen=True)
@@ -176,7 +202,7 @@ class BatSpec:
     knob_mass: float  # [kg]
     end_cap_mass: float  # [kg]
     shear_correction: float | None  # [-]
-    barrel_effective_width: float | None  # [m]
+    barrel_end: str  # closed | open
     slice_length: float  # [m]
     measured: MeasuredSpec | None
     reconcile: str  # density-profile | point-masses | none

@@ -1,9 +1,9 @@
-"""Tests of the flexible impact engine (batcert.physics.flexible).
+"""Tests of the flexible impact engine (batcert.engines.flexible).
 
 Two solvers for one set of equations: the batch engine (ETDRK4, exact modal propagation, all
 impacts at once) is checked against :func:`reference_impact`, a plain tight-tolerance
-``scipy.integrate.solve_ivp`` integration of the same modal equations, one impact at a time, in
-physical coordinates (beam modes, ball, and the barrel coordinate of either barrel model), with
+``scipy.integrate.solve_ivp`` integration of the same modal equations, one impact at a time
+(beam modes, the hollow barrel's shell modes, the residual pseudo-mode and the ball), with
 events for the contact law's branch changes and for separation. It is also used by
 ``benchmarks/bench_engine.py``.
 """
@@ -42,17 +42,14 @@ GAME = (-31.3, 50.0)  # 70 mph pitch, swing [m/s, rad/s]
 CANNON = (-60.0, 0.0)  # stationary bat, 60 m/s ball (BBCOR-style)
 
 
-def hollow_bat(wall: float, loss_factor: float = 0.0, effective_width: float | None = None):
-    """A 34 in aluminium-7050 bat, 2 5/8 in barrel, ``wall`` [m] in the barrel (3 mm handle).
-
-    The full-diameter barrel runs 0.546-0.864 m from the knob (:func:`barrel.barrel_region`);
-    the hoop mode's effective width is the default (half of it, 0.159 m) unless given [m]."""
+def hollow_bat(wall: float, loss_factor: float = 0.0, barrel_end: str = "closed"):
+    """A 34 in aluminium-7050 bat, 2 5/8 in barrel from 0.55 m, ``wall`` [m] in the barrel
+    (3 mm handle and taper), hollow from knob to tip."""
     material = dataclasses.replace(AL7050, loss_factor=loss_factor)
     return build_geometry("test-hollow", "hollow", 0.864, [0.0, 0.02, 0.30, 0.55, 0.864],
                           [0.040, 0.024, 0.024, BARREL_D, BARREL_D], material,
                           wall_z=[0.0, 0.45, 0.55, 0.864], wall_t=[3e-3, 3e-3, wall, wall],
-                          knob_mass=0.04, end_cap_mass=0.03,
-                          barrel_effective_width=effective_width)
+                          knob_mass=0.04, end_cap_mass=0.03, barrel_end=barrel_end)
 
 
 @pytest.fixture(scope="module")
@@ -66,103 +63,90 @@ def solve(bat, z, speeds, support="pinned", ball=BALL, pivot=PIVOT, **options):
 
 
 def reference_impact(bat, ball, pivot, support, z, pitch_speed, bat_angular_speed, modes,
-                     residual=True, barrel_model="modal", rtol=1e-10, atol=1e-12, patch=True):
-    """One impact integrated with solve_ivp (DOP853) in physical coordinates.
+                     residual=True, rtol=1e-10, atol=1e-12, patch=True, shell=True,
+                     ball_loss="compression"):
+    """One impact integrated with solve_ivp (DOP853) in modal coordinates.
 
-    State: all beam modal displacements and velocities (rigid modes included, plus the residual
-    pseudo-mode of the engine's documented construction), ball, and for hollow bats (impacts on
-    the full-diameter barrel, where :func:`barrel.barrel_spring_at` gives a finite spring) one
-    barrel coordinate of the hoop spring-mass ``k_h``, ``m_h``:
-
-    * ``barrel_model="series"``: the position ``W`` of a separate barrel mass; the ball presses on
-      ``W``, the spring ``k_h (y - W)`` pushes the beam at the impact point ``y = phi . q``:
-      ``m_h W'' = k_h (y - W) - F``, beam forcing ``-phi k_h (y - W)``; ``W'(0)`` = bat speed.
-    * ``barrel_model="modal"``: the hoop deflection ``s`` (inward, at the impact point) of the
-      ring's n = 2 mode, one more mode of the bat: the ball presses on ``y - s``,
-      ``m_h s'' + 2 zeta omega_h m_h s' + k_h s = F``, beam forcing ``-phi F``;
-      ``s(0) = s'(0) = 0``.
+    State: every beam modal displacement and velocity (rigid modes included), for a hollow bat
+    every kept shell mode (gains from :func:`barrel.barrel_response`, the model's definition of
+    the barrel), the residual pseudo-mode of the engine's documented construction (beam and
+    shell residual compliance in series) and the ball. The ball presses on ``sum g_j q_j``; every
+    mode is driven by ``-g_j F``; damping ``zeta = loss_factor / 2`` on every flexible mode.
 
     Contact law branches switch at events: compression ends where ``u' = 0``, restitution returns
-    to compression where ``u`` climbs back to ``u_max``, and the impact ends where ``u = 0``.
-    Damping ``zeta = loss_factor / 2`` on the bending modes and on the modal hoop mode (the
-    series barrel's coupled-mode damping has no simple physical form: undamped only).
+    to compression where ``u`` climbs back to ``u_max``, and the impact ends where ``u = 0``. The
+    ball's COR parameter: ``ball_loss="compression"``, the ball's rigid-wall COR at the wall speed
+    that compresses it to ``u_max`` (set when each compression branch ends);
+    ``"relative-speed"``, the COR at the impact's relative speed.
 
     ``patch``: the contact force is spread over the engine's contact patch (sample points and
-    weights from ``FlexibleEngine._patch``, a model definition, not part of the integration),
-    so the forcing shape is the weighted mode shape and the residual compliance the distributed
-    one; False: a point force at ``z``.
+    weights from ``FlexibleEngine._patch``, a model definition, not part of the integration);
+    False: a point force at ``z``. ``shell=False`` leaves a hollow bat's shell out (a guard).
 
     Returns
     -------
     exit_speed [m/s], contact_time [s]
     """
-    if barrel_model not in ("series", "modal"):
-        raise ValueError(f"unknown barrel model {barrel_model!r}")
     rel = np.array([bat_angular_speed * (z - pivot) - pitch_speed])
-    pts, w = (FlexibleEngine()._patch(bat, ball, np.array([z]), rel) if patch
-              else (np.array([[z]]), np.ones((1, 1))))
+    pts, w, half = FlexibleEngine()._patch(bat, ball, np.array([z]), rel)
+    if not patch:
+        pts, w = np.array([[z]]), np.ones((1, 1))
     nr, om = modes.n_rigid, modes.omega.copy()
     phi = (modes.at(pts.ravel()) * w.ravel()[:, None]).sum(axis=0)
+    c_res = residual_compliance(bat, modes, pts, w)[0] if residual else 0.0
+    barrel_modes = barrel.cached_barrel_modes(bat) if shell else None
+    if barrel_modes is not None:
+        resp = barrel.barrel_response(barrel_modes, pts, w,
+                                      barrel.patch_half_angle(bat, np.array([z]), half))
+        phi, om = np.append(phi, resp.gain[0]), np.append(om, resp.omega)
+        c_res += resp.residual[0] if residual else 0.0
     if residual:  # engine: omega_res = 2 max(omega), gain omega_res sqrt(residual compliance)
-        c = residual_compliance(bat, modes, pts, w)[0]
-        phi, om = np.append(phi, 2 * om[-1] * np.sqrt(c)), np.append(om, 2 * om[-1])
-    zeta_b = 0.5 * bat.material.loss_factor
-    zeta = np.where(om > 0, zeta_b, 0.0)
-    spring = barrel.barrel_spring_at(bat, [z])
-    hollow = spring is not None and bool(np.isfinite(spring[0][0]))
-    series = hollow and barrel_model == "series"
-    if series and bat.material.loss_factor:
-        raise NotImplementedError("the reference has no series-barrel damping")
-    k_h, m_h = (spring[0][0], spring[1][0]) if hollow else (0.0, 1.0)
-    c_h = 2 * zeta_b * np.sqrt(k_h * m_h)  # modal hoop damping coefficient [N s/m]
-    e0 = float(ball.cor(bat_angular_speed * (z - pivot) - pitch_speed))
-    beta = float(contact.restitution_exponent(ball.alpha, e0))
+        om_res = 2 * om.max()
+        phi, om = np.append(phi, om_res * np.sqrt(c_res)), np.append(om, om_res)
+    zeta = np.where(om > 0, 0.5 * bat.material.loss_factor, 0.0)
+    if ball_loss == "compression":
+        def beta_at(u_max):
+            return float(contact.compression_restitution(ball)(np.array([u_max]))[0])
+    else:
+        beta_fixed = float(contact.restitution_exponent(ball.alpha, ball.cor(rel[0])))
+
+        def beta_at(u_max):
+            return beta_fixed
     n = om.size
-    v_bat = bat_angular_speed * (z - pivot)
-    y0 = np.zeros(2 * n + 4)  # q, q', x_ball, x_ball', barrel coordinate (W or s) and its rate
+    y0 = np.zeros(2 * n + 2)  # q, q', x_ball, x_ball'
     y0[n:n + nr] = bat_angular_speed * rigid_mode_velocities(modes, pivot)
-    y0[2 * n + 1], y0[2 * n + 3] = pitch_speed, v_bat if series else 0.0
+    y0[2 * n + 1] = pitch_speed
 
     def compression(y):
-        if series:
-            surface, rate = y[2 * n + 2], y[2 * n + 3]
-        else:  # solid, off the barrel, or modal (s = 0 without a barrel)
-            surface, rate = phi @ y[:n] - y[2 * n + 2], phi @ y[n:2 * n] - y[2 * n + 3]
-        return surface - y[2 * n], rate - y[2 * n + 1]
+        return phi @ y[:n] - y[2 * n], phi @ y[n:2 * n] - y[2 * n + 1]
 
-    def rhs(t, y, u_max):
+    def rhs(t, y, u_max, beta):
         f = contact.contact_force(compression(y)[0], u_max, ball.k1, ball.alpha, beta)
-        g = k_h * (phi @ y[:n] - y[2 * n + 2]) if series else f  # force on the beam
         dy = np.empty_like(y)
-        dy[:n], dy[2 * n], dy[2 * n + 2] = y[n:2 * n], y[2 * n + 1], y[2 * n + 3]
-        dy[n:2 * n] = -2 * zeta * om * y[n:2 * n] - om**2 * y[:n] - phi * g
+        dy[:n], dy[2 * n] = y[n:2 * n], y[2 * n + 1]
+        dy[n:2 * n] = -2 * zeta * om * y[n:2 * n] - om**2 * y[:n] - phi * f
         dy[2 * n + 1] = f / ball.mass
-        if series:
-            dy[2 * n + 3] = (g - f) / m_h
-        elif hollow:
-            dy[2 * n + 3] = (f - k_h * y[2 * n + 2] - c_h * y[2 * n + 3]) / m_h
-        else:
-            dy[2 * n + 3] = 0.0
         return dy
 
     def event(fn, direction):
         fn.terminal, fn.direction = True, direction
         return fn
 
-    t, y, u_max, loading = 0.0, y0, 0.0, True
+    t, y, u_max, loading, beta = 0.0, y0, 0.0, True, beta_at(0.0)
     while True:
         if loading:
-            events = [event(lambda t_, y_, m_: compression(y_)[1], -1)]
+            events = [event(lambda t_, y_, m_, b_: compression(y_)[1], -1)]
         else:
-            events = [event(lambda t_, y_, m_: compression(y_)[0], -1),
-                      event(lambda t_, y_, m_: compression(y_)[0] - m_, 1)]
+            events = [event(lambda t_, y_, m_, b_: compression(y_)[0], -1),
+                      event(lambda t_, y_, m_, b_: compression(y_)[0] - m_, 1)]
         sol = solve_ivp(rhs, (t, t + 0.02), y, method="DOP853", rtol=rtol, atol=atol,
-                        events=events, args=(u_max,))
+                        events=events, args=(u_max, beta))
         t, y = sol.t[-1], sol.y[:, -1]
         if sol.status != 1:
             raise RuntimeError("reference integration did not separate")
         if loading:
             loading, u_max = False, compression(y)[0]
+            beta = beta_at(u_max)
         elif sol.t_events[1].size:
             loading = True
         else:
@@ -289,32 +273,28 @@ def test_contact_patch_removes_the_point_force_mesh_ripple(r161):
     del pivot
 
 
-@pytest.mark.parametrize("case", ["solid-pinned", "solid-free", "series-pinned", "series-free",
-                                  "modal-pinned", "modal-free"])
+@pytest.mark.parametrize("case", ["solid-pinned", "solid-free", "hollow-pinned", "hollow-free"])
 def test_energy_is_conserved_with_a_lossless_ball(r161, case):
     # Lossless ball (e0 = 1), no damping: ball kinetic + bat kinetic and strain energy (rigid and
-    # bending modes, residual pseudo-mode, barrel) after separation equals the energy before
-    # within 0.1 % (model: < 6e-6 in all six cases), all from the modal states at separation.
-    # The hollow sweep has 10 impacts on the full-diameter barrel (hoop mode) and 8 off it.
+    # bending modes, shell modes, residual pseudo-mode) after separation equals the energy before
+    # within 0.1 % (model: < 1e-5 in all four cases), all from the modal states at separation.
+    # The hollow sweep runs from the handle to the tip; the shell rings after every impact.
     model, support = case.split("-")
     bat = r161 if model == "solid" else hollow_bat(2.2e-3)
     z = np.arange(0.30, 0.84, 0.03)
     speeds = GAME if support == "pinned" else CANNON
-    out = solve(bat, z, speeds, support, ball=LOSSLESS, record_states=True,
-                barrel_model="modal" if model == "modal" else "series")
+    out = solve(bat, z, speeds, support, ball=LOSSLESS, record_states=True)
     d = out.diagnostics
     modes = cached_modes(bat, support, PIVOT, 24)
     rigid0 = speeds[1] * rigid_mode_velocities(modes, PIVOT)
-    before = 0.5 * LOSSLESS.mass * speeds[0] ** 2 + 0.5 * (rigid0**2).sum() + d[
-        "barrel_energy_before"]
+    before = 0.5 * LOSSLESS.mass * speeds[0] ** 2 + 0.5 * (rigid0**2).sum()
     after = (0.5 * LOSSLESS.mass * out.exit_speed**2 + 0.5 * (d["modal_velocity"] ** 2).sum(1)
              + 0.5 * ((modes.omega[modes.n_rigid:] * d["bending_displacement"]) ** 2).sum(1)
              + d["residual_energy"] + d["barrel_energy"])
     np.testing.assert_allclose(after, before, rtol=1e-3)
     assert np.all(d["vibrational_energy"] > 0)
-    if model == "modal":  # the hoop mode rings after impacts on the barrel, and only there
-        on = barrel.axial_shape(bat, z) >= 0.05
-        assert on.sum() == 10 and np.all((d["barrel_energy"] > 0) == on)
+    if model == "hollow":
+        assert np.all(d["barrel_energy"] > 0)
 
 
 def test_collision_efficiency_below_one_and_cor_physical_in_the_barrel(r161):
@@ -368,106 +348,103 @@ def test_agrees_with_reference_integration_solid(r161):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("model, support, loss_factor", [("series", "pinned", 0.0),
-                                                         ("modal", "pinned", 0.0),
-                                                         ("modal", "free", 0.02)])
-def test_agrees_with_reference_integration_hollow(model, support, loss_factor):
-    # Both barrel models (flexible.py module notes) against solve_ivp (rtol 1e-9) in physical
-    # coordinates: the series barrel mass W, or the modal hoop deflection s (contact at y - s,
-    # m_h s'' + k_h s = F). 2.0 mm wall; 12 impacts over the full-diameter barrel (0.546-0.864
-    # m, where the (2, 1) hoop mode acts, from near its ends, axial shape 0.14, to its middle)
-    # and 4 outside it (0.40-0.54 m, taper: no hoop spring). Stationary bat at 60 m/s pinned;
-    # the damped case (loss factor 0.02 on every mode, hoop included; the reference damps only
-    # the modal hoop) swings the free bat at game speeds. Within 0.1 % of the exit speed
-    # (brief); model: < 7e-5 for all three (largest at 0.40 m, the same for both models, where
-    # the exit speed is 7 m/s), contact times < 1e-4.
+@pytest.mark.parametrize("support, loss_factor, ball_loss", [("pinned", 0.0, "compression"),
+                                                             ("free", 0.02, "compression"),
+                                                             ("pinned", 0.0, "relative-speed")])
+def test_agrees_with_reference_integration_hollow(support, loss_factor, ball_loss):
+    # The hollow bat (beam and shell modes) against solve_ivp (rtol 1e-9), 2.0 mm wall, 16
+    # impacts from the taper (0.40 m) to the tip. Stationary bat at 60 m/s pinned, or the free
+    # bat swung at game speeds with every mode damped (loss factor 0.02). Within 0.1 % of the
+    # exit speed (brief); measured < 3e-4 of it (the largest in the taper, where the exit speed
+    # is lowest); contact times within 1 %.
     bat = hollow_bat(2.0e-3, loss_factor=loss_factor)
     speeds = CANNON if support == "pinned" else GAME
     z = np.concatenate([[0.40, 0.45, 0.50, 0.54], np.linspace(0.56, 0.85, 12)])
-    assert np.all(barrel.axial_shape(bat, z[4:]) > 0.1) and np.all(
-        barrel.axial_shape(bat, z[:4]) == 0)
-    out = solve(bat, z, speeds, support, barrel_model=model)
+    out = solve(bat, z, speeds, support, ball_loss=ball_loss)
     modes = cached_modes(bat, support, PIVOT, 24)
-    ref = np.array([reference_impact(bat, BALL, PIVOT, support, zi, *speeds, modes,
-                                     barrel_model=model, rtol=1e-9) for zi in z])
+    ref = np.array([reference_impact(bat, BALL, PIVOT, support, zi, *speeds, modes, rtol=1e-9,
+                                     ball_loss=ball_loss) for zi in z])
     np.testing.assert_allclose(out.exit_speed, ref[:, 0], rtol=1e-3)
     np.testing.assert_allclose(out.diagnostics["contact_time"], ref[:, 1], rtol=1e-2)
 
 
-def test_reference_integration_tells_the_barrel_models_apart():
-    # guards the test above against comparing two copies of one model: on the barrel the series
-    # model's extra mass m_h (counted twice, flexible.py notes) changes the exit speed by
-    # several m/s (model: 28.1 vs 7.8 m/s at 0.56 m), off it the models coincide (no spring)
-    bat = hollow_bat(2.0e-3)
+def test_reference_integration_sees_the_shell():
+    # guards the test above against comparing two copies of a bat without its shell: mid-barrel
+    # a 2.8 mm wall (hoop frequency 1.9 kHz) raises the exit speed by about 11 % (measured
+    # 15.50 against 13.91 m/s), far beyond the 0.1 % tolerance
+    bat = hollow_bat(2.8e-3)
     modes = cached_modes(bat, "pinned", PIVOT, 24)
-    for z, differ in ((0.56, True), (0.45, False)):
-        v = [reference_impact(bat, BALL, PIVOT, "pinned", z, *CANNON, modes, barrel_model=m,
-                              rtol=1e-8)[0] for m in ("series", "modal")]
-        assert (abs(v[0] - v[1]) > 1.0) if differ else v[0] == pytest.approx(v[1], rel=1e-12)
+    v = [reference_impact(bat, BALL, PIVOT, "pinned", 0.70, *CANNON, modes, rtol=1e-8,
+                          shell=s)[0] for s in (True, False)]
+    assert v[0] > 1.05 * v[1]
 
 
 # -- hollow barrels -------------------------------------------------------------------------
 
-WALLS = np.arange(1.8e-3, 3.25e-3, 0.2e-3)  # the practical range of barrel walls [m]
+WALLS = np.array([1.6, 2.0, 2.4, 2.8, 3.2, 3.6, 4.0, 6.0]) * 1e-3  # barrel walls [m]
 
 
-def test_thinner_wall_raises_bbcor():
-    # Issue / DESIGN.md Sec. 1/4 (Smith 2001; Nathan, Russell & Smith 2004): "a thinner wall must
-    # give a more compliant barrel and a higher BBCOR/BPF over the practical range of walls".
-    # Default model (modal (2, 1) hoop mode, effective width L_b / 2), stationary bat, 60 m/s
-    # (BBCOR-style), max over the full-diameter barrel (0.546-0.864 m; 0.56-0.855 m in 5 mm steps).
-    # Model: 0.6848, 0.6815, 0.6631, 0.6362, 0.6119, 0.5944, 0.5813, 0.5701 for 1.8 ... 3.2 mm:
-    # strictly falling, smallest step 0.0033 (1.8 -> 2.0 mm, where the 0.89 ms hoop period nears the
-    # 1.2 ms contact and the gain saturates; it turns over below 1.8 mm: 0.6821 at 1.6 mm), against
-    # < 1e-5 from halving the step or doubling the modes. The rigid bat gives e0 = 0.50 (BPF = BBCOR
-    # / 0.50 orders the same way). The maximum lies mid-barrel (0.685-0.70 m, axial shape sin(pi x /
-    # L_b) > 0.98), where the hoop mode is most compliant.
-    z = np.arange(0.56, 0.86, 0.005)
-    outs = [solve(hollow_bat(t), z, CANNON) for t in WALLS]
-    bbcor = np.array([o.cor.max() for o in outs])
-    peak = np.array([z[np.argmax(o.cor)] for o in outs])
-    for t, b, p in zip(WALLS, bbcor, peak, strict=True):
-        print(f"wall {t * 1e3:.1f} mm: BBCOR {b:.4f} at {p:.3f} m from the knob")
-    rigid = RigidEngine().solve(hollow_bat(3.2e-3), BALL, PIVOT, ImpactBatch(z - PIVOT, *CANNON))
-    assert np.all(np.diff(bbcor) < 0)
-    assert bbcor[-1] > rigid.cor.max()
-    assert np.all(barrel.axial_shape(hollow_bat(WALLS[0]), peak) > 0.95)
-    # the mechanism: a thinner wall is a softer hoop spring at the same point
-    k = [FlexibleEngine().linear_system(hollow_bat(t), BALL, PIVOT, ImpactBatch(
-        [0.70 - PIVOT], *CANNON))[1]["barrel_stiffness"][0] for t in WALLS]
-    assert np.all(np.diff(k) > 0)
+def test_barrel_trampoline_has_an_optimum_wall():
+    # The trampoline (DESIGN.md Sec. 1; Nathan, Russell & Smith 2004): a more compliant barrel
+    # stores more of the deformation that the lossy ball would waste, but only returns it if it
+    # springs back within the contact. Stationary bat at 60 m/s (BBCOR-style), maximum COR over
+    # the full-diameter barrel (0.56-0.855 m, 1 cm steps), walls 1.6-6 mm (hoop frequency
+    # 1.1-4.2 kHz). Measured: 0.490, 0.492, 0.519, 0.531, 0.532, 0.527, 0.521, 0.511: the gain
+    # peaks near 3 mm (2.2 kHz) and vanishes below 2 mm (1.4 kHz, whose period approaches the
+    # 1.1 ms contact: the barrel keeps its energy, 30-36 J of the 261 J, as vibration; Russell
+    # (Acoustics Today 2017): a barrel below about 1 kHz performs worse than wood). The thick
+    # wall tends to the rigid bat (within 2 %). With the shell's inertia left out (every shell
+    # mode quasi-static) the same barrels would rise monotonically as the wall thins: the
+    # optimum is the shell's mass at work.
+    z = np.arange(0.56, 0.86, 0.01)
+    bbcor = np.array([solve(hollow_bat(t), z, CANNON).cor.max() for t in WALLS])
+    static = np.array([solve(hollow_bat(t), z, CANNON, shell_max_frequency=100.0).cor.max()
+                       for t in WALLS])
+    for t, b, q in zip(WALLS, bbcor, static, strict=True):
+        print(f"wall {t * 1e3:.1f} mm: BBCOR {b:.4f} (quasi-static shell {q:.4f})")
+    rigid = RigidEngine().solve(hollow_bat(6e-3), BALL, PIVOT, ImpactBatch(z - PIVOT, *CANNON))
+    best = int(np.argmax(bbcor))
+    assert 0 < best < WALLS.size - 1 and bbcor[best] > bbcor[0] + 0.02
+    assert bbcor[-1] == pytest.approx(rigid.cor.max(), rel=0.02)
+    assert np.all(np.diff(static) < 0)
 
 
 def test_hollow_diagnostics():
-    # 0.40 m from the knob lies in the taper, off the full-diameter barrel (0.546-0.864 m): no
-    # hoop mode there (barrel.py), so no barrel share and no barrel frequency; 0.70 m is mid-
-    # barrel, where the 2.5 mm ring's n = 2 frequency is REFERENCE-DATA.md (D)'s ~1.60 kHz
-    # (model: 1596 Hz; independent of the width and the axial shape, which scale k and m alike)
-    out = solve(hollow_bat(2.5e-3), [0.40, 0.70, 0.862], CANNON)
+    # a hollow bat's impact records the energy left in the shell and its share of the stored
+    # energy; in the taper (0.40 m, small radius, stiff) the shell takes less than mid-barrel
+    out = solve(hollow_bat(2.5e-3), [0.40, 0.70], CANNON)
     d = out.diagnostics
-    assert d["barrel_energy_share"][0] == 0 and np.isnan(d["barrel_frequency"][0])
-    assert 0 < d["barrel_energy_share"][1] < 1
-    assert d["barrel_frequency"][1] == pytest.approx(1600, rel=0.05)
-    # at the barrel's end (axial shape < 0.05) the hoop mode is left out too
-    assert d["barrel_energy_share"][2] == 0 and np.isnan(d["barrel_frequency"][2])
-    # a solid bat has no barrel diagnostics
+    assert 0 <= d["barrel_energy_share"][0] < d["barrel_energy_share"][1] < 1
+    assert np.all(d["barrel_energy"] > 0)
+    assert np.all(d["ball_energy_loss"] > 0)
     assert "barrel_energy_share" not in solve(r161_bat(), [0.7], CANNON).diagnostics
     for key in ("contact_time", "peak_force", "max_compression", "vibrational_energy", "e0"):
-        assert d[key].shape == (3,)
+        assert d[key].shape == (2,)
 
 
-def test_explicit_effective_width_is_honoured():
-    # barrel.barrel_spring_at: bat.barrel_effective_width overrides the default L_b / 2; k and m
-    # both scale with the width (frequency unchanged) and the impact changes
-    default, narrow = hollow_bat(2.5e-3), hollow_bat(2.5e-3, effective_width=BARREL_D)
-    batch = ImpactBatch([0.70 - PIVOT], *CANNON)
-    ext = [FlexibleEngine().linear_system(b, BALL, PIVOT, batch)[1] for b in (default, narrow)]
-    ratio = BARREL_D / barrel.default_effective_width(default)
-    assert ext[1]["barrel_stiffness"][0] == pytest.approx(ratio * ext[0]["barrel_stiffness"][0])
-    assert ext[1]["barrel_mass"][0] == pytest.approx(ratio * ext[0]["barrel_mass"][0])
-    assert ext[1]["barrel_omega"][0] == pytest.approx(ext[0]["barrel_omega"][0], rel=1e-12)
-    v = [solve(b, [0.70], CANNON).exit_speed[0] for b in (default, narrow)]
-    assert abs(v[1] - v[0]) > 0.1
+def test_ball_loss_follows_its_compression():
+    # physics/contact.py: e0 is the ball's rigid-wall COR at the wall speed that compresses it
+    # as far. A compliant barrel squeezes the ball less than a solid bat at the same speed, so
+    # its e0 is higher; against a stiff bat e0 tends to that of the compression-equivalent wall.
+    hollow = solve(hollow_bat(2.0e-3), [0.70], CANNON).diagnostics
+    solid = solve(hollow_bat(2.0e-3), [0.70], CANNON, shell_max_frequency=8000.0).diagnostics
+    assert hollow["max_compression"][0] == pytest.approx(solid["max_compression"][0], rel=1e-12)
+    r161 = r161_bat()
+    d = solve(r161, [0.70], CANNON).diagnostics
+    v_eq = contact.equivalent_wall_speed(d["max_compression"], BALL.mass, BALL.k1, BALL.alpha)
+    assert d["e0"][0] == pytest.approx(float(BALL.cor(v_eq)[0]), rel=1e-12)
+    assert solve(hollow_bat(2.0e-3), [0.70], CANNON).diagnostics["max_compression"][0] < \
+        d["max_compression"][0]
+
+
+def test_open_barrel_end_is_softer():
+    # an open tip end (no end cap holding it round) lets the barrel oval more near the tip:
+    # lower hoop frequency and a higher exit speed 3 cm from the tip
+    from batcert.physics.barrel import hoop_frequency
+    closed, open_ = hollow_bat(2.5e-3), hollow_bat(2.5e-3, barrel_end="open")
+    assert hoop_frequency(open_) < hoop_frequency(closed)
+    v = [solve(b, [0.834], CANNON).exit_speed[0] for b in (closed, open_)]
+    assert v[1] > v[0]
 
 
 # -- input errors ---------------------------------------------------------------------------
@@ -485,6 +462,6 @@ def test_input_errors(r161):
     with pytest.raises(ValueError, match="modes are for"):
         eng.solve(r161, BALL, 0.2, ImpactBatch([0.3], -40.0, 50.0),
                   modes=cached_modes(r161, "pinned", PIVOT, 24))
-    for bad in ({"n_modes": 0}, {"time_step": 0.0}, {"barrel_model": "spring"}):
+    for bad in ({"n_modes": 0}, {"time_step": 0.0}, {"ball_loss": "spring"}):
         with pytest.raises(ValueError):
             FlexibleEngine(**bad)

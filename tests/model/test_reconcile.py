@@ -157,7 +157,8 @@ def test_impossible_measurements_refused():
 
 def _values(**measured) -> MeasuredSpec:
     base = dict(pivot=0.1524, mass=None, balance_point=None, cg=None, moi=None,
-                radius_of_gyration=None, pendulum_period=None, first_bending_frequency=None)
+                radius_of_gyration=None, pendulum_period=None, first_bending_frequency=None,
+                hoop_frequency=None, barrel_compression=None)
     base.update(measured)
     return MeasuredSpec(**base)
 

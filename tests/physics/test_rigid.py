@@ -174,17 +174,21 @@ def test_free_bat_recoil_factor():
     assert k == pytest.approx(0.145 / 0.9 * (1 + 0.04 / 0.05))
 
 
-def test_engine_matches_closed_form_and_ball_cor():
-    """RigidEngine: pinned exit speed is the closed form with the ball's COR at the relative
-    speed; the COR it reports (Eq. 3) equals that ball COR; Eq. 1 holds."""
+@pytest.mark.parametrize("ball_loss", ["compression", "relative-speed"])
+def test_engine_matches_closed_form_and_ball_cor(ball_loss):
+    """RigidEngine: pinned exit speed is the closed form with the ball's COR at the wall speed
+    that compresses the ball as much, v_rel / sqrt(1 + k) (the 0.5 mu v^2 of the impact stored in
+    the ball; physics/contact.py), or at the relative speed itself; the COR it reports (Eq. 3)
+    equals that ball COR; Eq. 1 holds."""
     bat = build_geometry("rod", "solid", 0.84, [0.0, 0.84], [0.05, 0.065], LIBRARY["ash"][0])
     ball = BallModel("b", 0.145, 0.0366, (10.0, 60.0), (0.6, 0.5))
     pivot = 0.15
     r = np.linspace(0.3, 0.65, 36)
     batch = ImpactBatch(r, np.full(r.size, -31.0), np.linspace(0.0, 60.0, r.size))
-    out = get_engine("rigid").solve(bat, ball, pivot, batch)
+    out = get_engine("rigid", ball_loss=ball_loss).solve(bat, ball, pivot, batch)
     moi = bat.moi_about(pivot)
-    e = ball.cor(batch.relative_speed)
+    reduced = 1 / (1 + ball.mass * r**2 / moi) if ball_loss == "compression" else 1.0
+    e = ball.cor(batch.relative_speed * np.sqrt(reduced))
     expected = ((1 + e) * moi * batch.bat_angular_speed * r
                 + batch.pitch_speed * (ball.mass * r**2 - e * moi)) / (moi + ball.mass * r**2)
     np.testing.assert_allclose(out.exit_speed, expected, rtol=1e-12)
@@ -196,7 +200,7 @@ def test_engine_matches_closed_form_and_ball_cor():
 
 def test_free_bat_reports_the_cor_it_used_and_conserves_momentum():
     """RigidEngine, support "free": the reported COR is the ball's COR used in the collision
-    (before the fix it was Eq. 3 with the pinned w2, 0.497 instead of 0.510); linear momentum and
+    (at the free bat's compression-equivalent wall speed); linear momentum and
     angular momentum about the CG are conserved with the free bat's w2 (its angular velocity)."""
     bat = build_geometry("rod", "solid", 0.84, [0.0, 0.84], [0.05, 0.065], LIBRARY["ash"][0])
     ball = BallModel("b", 0.145, 0.0366, (10.0, 60.0), (0.6, 0.5))
@@ -204,10 +208,12 @@ def test_free_bat_reports_the_cor_it_used_and_conserves_momentum():
     r = np.linspace(0.3, 0.72, 22)
     batch = ImpactBatch(r, np.full(r.size, -40.0), np.full(r.size, 51.0))
     out = get_engine("rigid").solve(bat, ball, pivot, batch, support="free")
-    np.testing.assert_allclose(out.cor, ball.cor(batch.relative_speed), rtol=1e-12)
     m, big_m, zcg = ball.mass, bat.mass, bat.balance_point
     icg = bat.moi_about(zcg)
     d = r + pivot - zcg
+    k = (m / big_m) * (1 + d**2 * big_m / icg)  # free bat's effective-mass ratio
+    np.testing.assert_allclose(out.cor, ball.cor(batch.relative_speed / np.sqrt(1 + k)),
+                               rtol=1e-12)
     v_cg = 51.0 * (zcg - pivot)
     dv_cg = m * (batch.pitch_speed - out.exit_speed) / big_m  # impulse / M
     # angular momentum about the CG: I_cg w1 + m v_p d = I_cg w2 + m v_b d

@@ -99,7 +99,7 @@ def test_warnings_in_reports(result, written):
     for w in result.warnings:
         assert w in html
         assert f"> **\u26a0 Warning:** {md_text(w)}" in md
-    assert "BPF is 1 by construction" in md
+    assert "use the flexible engine for a meaningful BPF" in md
 
 
 def test_markdown_has_a_row_per_condition(result, written):

@@ -59,7 +59,7 @@ CASES: dict[str, list[Expect]] = {
                                                        "frequency"),
     ],
     "bat-unknown-material.yaml": [
-        Expect(8, "material", "unknown material 'ashe' (library: ash, maple, birch, "
+        Expect(8, "material", "unknown material 'ashe' (library: ash, maple, birch, ash-bat, "
                               "aluminium-7050); did you mean 'ash'?"),
     ],
     "bat-missing-field.yaml": [Expect(2, "material", "required field is missing")],

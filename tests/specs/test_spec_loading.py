@@ -53,7 +53,7 @@ def test_ash_spec_in_si(repo_root):
     assert spec.measured.mass == pytest.approx(0.906)
     assert spec.measured.cg == pytest.approx(0.429)
     assert spec.measured.moi == pytest.approx(0.209)
-    assert spec.material.name == "ash"
+    assert spec.material.name == "ash-bat"
     assert spec.source.line("measured", "mass") == spec.source.line("measured") + 2
     assert len(spec.sha256) == 64
 

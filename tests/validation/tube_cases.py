@@ -3,9 +3,12 @@ independent finite-element check (scripts/fe_tube_reference.py, test_shell_again
 
 The tube: outer diameter ``D``, wall ``t``, length ``L``, uniform material; its mid-surface radius
 is ``(D - t) / 2``. Loads are patches of uniform pressure on the outer surface, ``length`` long
-and ``arc`` wide (arc length on the outer surface), represented on the mid-surface by their
-resultant with the same axial and circumferential spread (thin-shell theory reads the
-mid-surface; the through-thickness squeeze under the pressure is left out).
+and ``arc`` wide (arc length on the outer surface), represented on the mid-surface by the same
+axial and circumferential spread (thin-shell theory reads the mid-surface; the
+through-thickness squeeze under the pressure is left out). A patch's force is the resultant of
+its pressure, a vector along the patch's centre normal, as in the finite-element reference: the
+pressure summed without direction is larger by ``beta / sin(beta)`` (``beta`` the patch's
+half-angle), 1.063 for a 40 mm patch on a 2 5/8 in tube.
 """
 
 from __future__ import annotations
@@ -42,6 +45,11 @@ def frequencies(tube: Tube, n: int, ends: tuple[str, str], count: int = 2,
     lam = scipy.linalg.eigh(system.stiffness, system.mass, eigvals_only=True,
                             subset_by_index=(0, count - 1), check_finite=False)
     return np.sqrt(np.clip(lam, 0.0, None)) / (2 * np.pi)
+
+
+def _resultant_scale(half_angle: float) -> float:
+    """Scalar pressure sum over vector resultant of a uniform arc of half-angle ``half_angle``."""
+    return half_angle / np.sin(half_angle)
 
 
 def _arc_factor(n: int, half_angle: float) -> float:
@@ -83,9 +91,11 @@ def squeeze(tube: Tube, centre: float, length: float, arc: float, orders: int = 
         full[system.free] = x
         centre_disp += 2.0 * c * float(h[0] @ full[cols[0]])  # both loads, read at theta = 0
         average_disp += 2.0 * c * c * float(f @ x)
-    return {"centre_approach_per_newton": 2 * centre_disp,
-            "average_approach_per_newton": 2 * average_disp,
-            "stiffness": 1.0 / average_disp}
+    centre_disp *= _resultant_scale(beta)
+    average_disp *= _resultant_scale(beta)
+    return {"centre_approach_per_newton": float(2 * centre_disp),
+            "average_approach_per_newton": float(2 * average_disp),
+            "stiffness": float(1.0 / average_disp)}
 
 
 def squeeze_pulse(tube: Tube, centre: float, length: float, arc: float, peak_force: float,
@@ -113,7 +123,7 @@ def squeeze_pulse(tube: Tube, centre: float, length: float, arc: float, peak_for
         cols, h = normal_reader(shell, n, np.array([centre]))
         full = np.zeros(supported.node_dofs * shell.z.size)
         full[supported.free] = x_static
-        read_static = (float(h[0] @ full[cols[0]]) * c, float(f_s @ x_static))
+        read_static = (float(h[0] @ full[cols[0]]), float(f_s @ x_static))
         lam, vec = scipy.linalg.eigh(free_sys.stiffness, free_sys.mass, check_finite=False,
                                      subset_by_value=(-np.inf, (2 * np.pi * max_frequency) ** 2))
         keep = lam > (2 * np.pi) ** 2
@@ -122,7 +132,7 @@ def squeeze_pulse(tube: Tube, centre: float, length: float, arc: float, peak_for
         modal_force = vec.T @ f_m  # per unit force
         full_m = np.zeros((free_sys.node_dofs * shell.z.size, omega.size))
         full_m[free_sys.free] = vec
-        at_centre = (h[0] @ full_m[cols[0]]) * c
+        at_centre = h[0] @ full_m[cols[0]]  # cos(n theta) = 1 at theta = 0
         response = _half_sine_response(omega, duration, t)  # q per unit force, (t, modes)
         q_static = modal_force / omega**2
         # mode acceleration: static response + dynamic part of the kept modes
@@ -131,8 +141,9 @@ def squeeze_pulse(tube: Tube, centre: float, length: float, arc: float, peak_for
         average_n = read_static[1] * force + (dyn * (q_static * modal_force)).sum(1)
         at_centre_total += 2.0 * centre_n  # two loads
         average += 2.0 * average_n
-    return {"max_centre_approach": float(2 * peak_force * at_centre_total.max()),
-            "max_average_approach": float(2 * peak_force * average.max())}
+    scale = 2 * peak_force * _resultant_scale(beta)
+    return {"max_centre_approach": float(scale * at_centre_total.max()),
+            "max_average_approach": float(scale * average.max())}
 
 
 def _half_sine_response(omega: np.ndarray, duration: float, t: np.ndarray) -> np.ndarray:

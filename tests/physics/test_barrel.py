@@ -49,6 +49,26 @@ def test_thinner_wall_lowers_the_hoop_frequency():
     assert f[0] < f[1] < f[2]
 
 
+def test_hoop_frequency_is_the_barrels_own_mode():
+    # A 4 mm barrel over a 2.2 mm taper (hollow_bat's taper and handle walls are 3 mm; here
+    # thinner): the lowest n = 2 mode of the whole wall lives in the taper, below the barrel's.
+    # The hoop frequency is the barrel's (largest deflection in the full-diameter part), which
+    # an impact hammer on the barrel measures: above the 4 mm ring (2678 Hz; ends stiffen it)
+    # and above the lowest n = 2 frequency of the wall (measured: 2504 Hz in the taper, 2797 Hz
+    # in the barrel).
+    from batcert.model.geometry import build_geometry
+    from test_flexible import AL7050, BARREL_D
+
+    bat = build_geometry("thin-taper", "hollow", 0.864, [0.0, 0.02, 0.30, 0.55, 0.864],
+                         [0.040, 0.024, 0.024, BARREL_D, BARREL_D], AL7050,
+                         wall_z=[0.0, 0.45, 0.52, 0.55, 0.864],
+                         wall_t=[2.2e-3, 2.2e-3, 2.2e-3, 4e-3, 4e-3])
+    lowest = float(shell.harmonic_modes(barrel.barrel_shell(bat), 2, 1e5).omega[0] / (2 * np.pi))
+    ring = shell.ring_frequency(0.5 * (BARREL_D - 4e-3), 4e-3, 71.7e9, 2830.0, 0.33)
+    f = barrel.hoop_frequency(bat)
+    assert lowest < ring < f
+
+
 def test_modal_plus_residual_is_the_static_compliance(bat):
     # barrel_response splits each patch's quasi-static compliance into the kept modes'
     # sum (g / omega)^2 and the residual: they add back exactly, and the residual is positive.

@@ -87,18 +87,19 @@ def barrel_shell(bat: BatModel) -> ShellOfRevolution | None:
 class BarrelModes:
     """Everything the engine needs of a barrel, computed once per bat (cached).
 
-    Loads and read-outs of the normal displacement only touch the ``W`` and ``W'`` unknowns of
-    the nodes, so each order is reduced to them ("W space", ``2 N`` unknowns for ``N`` nodes,
+    Loads and read-outs of the normal displacement only touch the ``u_z``, ``u_r`` and ``W'``
+    unknowns of the nodes, so each order is reduced to them ("W space", ``3 N`` unknowns for
+    ``N`` nodes,
     the same for every order): ``green[n]`` is the static flexibility between them (order 0
-    with inertia relief), ``shapes[n]`` the kept modes' ``W``, ``W'`` at the nodes.
+    with inertia relief), ``shapes[n]`` the kept modes' ``u_z``, ``u_r``, ``W'`` at the nodes.
     """
 
     shell: ShellOfRevolution
     orders: tuple[int, ...]  # 0, 2 .. static_orders
-    green: tuple[np.ndarray, ...]  # (2N, 2N) per order
+    green: np.ndarray  # (orders, 3N, 3N)
     omega: np.ndarray  # kept modes, order by order [rad/s], (m,)
     mode_orders: np.ndarray  # the order of each kept mode, (m,)
-    shapes: np.ndarray  # W space shapes of the kept modes, mass-normalised, (2N, m)
+    shapes: np.ndarray  # W space shapes of the kept modes, mass-normalised, (3N, m)
 
 
 def _orders(highest: int) -> list[int]:
@@ -106,9 +107,10 @@ def _orders(highest: int) -> list[int]:
 
 
 def _w_space(system: HarmonicSystem, n_nodes: int) -> np.ndarray:
-    """Full-vector dof of ``W``, ``W'`` at every node, in W-space order, (2N,)."""
-    base = system.node_dofs * np.arange(n_nodes)[:, None] + system.w_offset
-    return (base + np.arange(2)[None, :]).ravel()
+    """Full-vector dof of ``u_z``, ``u_r``, ``W'`` at every node, in W-space order, (3N,)."""
+    base = system.node_dofs * np.arange(n_nodes)[:, None]
+    slots = np.array([0, system.w_offset, system.w_offset + 1])
+    return (base + slots[None, :]).ravel()
 
 
 def _banded(a: np.ndarray, upper: int) -> np.ndarray:
@@ -125,7 +127,7 @@ def _green(system: HarmonicSystem, w_dofs: np.ndarray) -> np.ndarray:
     position[system.free] = np.arange(system.free.size)
     rows = position[w_dofs]
     load = np.zeros((system.free.size, w_dofs.size))
-    ok = rows >= 0  # W of a closed end is held: no flexibility there
+    ok = rows >= 0  # u_r of a closed end is held: no flexibility there
     load[rows[ok], np.flatnonzero(ok)] = 1.0
     upper = 2 * system.node_dofs - 1
     factor = scipy.linalg.cholesky_banded(_banded(system.stiffness, upper), check_finite=False)
@@ -163,7 +165,7 @@ def compute_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
             omega.append(modes.omega)
             orders.append(np.full(modes.omega.size, n))
             shapes.append(modes.vectors[w_dofs])
-    return BarrelModes(shell, tuple(_orders(static_orders)), tuple(green),
+    return BarrelModes(shell, tuple(_orders(static_orders)), np.stack(green),
                        np.concatenate(omega), np.concatenate(orders),
                        np.concatenate(shapes, axis=1))
 
@@ -174,11 +176,14 @@ _CACHE: OrderedDict[tuple, BarrelModes | None] = OrderedDict()
 def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
                         dynamic_orders: int = DYNAMIC_ORDERS,
                         static_orders: int = STATIC_ORDERS) -> BarrelModes | None:
-    """:func:`compute_barrel_modes` memoised on the bat's content (LRU, 16 entries)."""
+    """:func:`compute_barrel_modes` memoised on what the shell depends on (LRU, 8 entries of
+    about 20 MB each for a 34 in bat: the static flexibility of 40 orders)."""
     h = hashlib.sha256()
     for a in (bat.z_edges, bat.outer_diameter, bat.inner_diameter, bat.linear_density):
         h.update(np.ascontiguousarray(a, dtype=float).tobytes())
-    key = (h.hexdigest(), bat.construction, bat.material, bat.barrel_stiffness_scale,
+    m = bat.material  # not its name or loss factor: the modes do not depend on them
+    key = (h.hexdigest(), bat.construction, m.density, m.youngs_modulus, m.poisson_ratio,
+           bat.barrel_stiffness_scale,
            bat.barrel_mass_scale, bat.barrel_end, float(max_frequency), int(dynamic_orders),
            int(static_orders))
     if key in _CACHE:
@@ -186,24 +191,27 @@ def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
         return _CACHE[key]
     out = compute_barrel_modes(bat, max_frequency, dynamic_orders, static_orders)
     _CACHE[key] = out
-    while len(_CACHE) > 16:
+    while len(_CACHE) > 8:
         _CACHE.popitem(last=False)
     return out
 
 
+def clear_barrel_cache() -> None:
+    """Empty the in-process barrel cache."""
+    _CACHE.clear()
+
+
 def _w_load(shell: ShellOfRevolution, points: np.ndarray, weights: np.ndarray) -> np.ndarray:
-    """Each impact's patch as W-space load (unit resultant), shape (p, 2N)."""
+    """Each impact's patch as W-space load (unit resultant), shape (p, 3N): the weights with
+    which :func:`~batcert.physics.shell.normal_reader` reads ``W`` from the nodes' ``u_z``,
+    ``u_r``, ``W'``."""
     p = points.shape[0]
-    inside = (points >= shell.z[0]) & (points <= shell.z[-1])
-    e = np.clip(np.searchsorted(shell.z, points, side="right") - 1, 0, shell.n_elements - 1)
-    xi = np.clip((points - shell.z[e]) / (shell.z[e + 1] - shell.z[e]), 0.0, 1.0)
-    L = shell.lengths[e]
-    h = np.stack([1 - 3 * xi**2 + 2 * xi**3, L * (xi - 2 * xi**2 + xi**3),
-                  3 * xi**2 - 2 * xi**3, L * (-xi**2 + xi**3)], axis=-1)
-    h *= (weights * inside)[..., None]
-    cols = 2 * e[..., None] + np.arange(4)
-    g = np.zeros((p, 2 * shell.z.size))
-    np.add.at(g, (np.broadcast_to(np.arange(p)[:, None, None], cols.shape), cols), h)
+    cols, h = normal_reader(shell, 2, points)  # order 2's layout: 5 dofs per node
+    node, slot = np.divmod(cols, 5)
+    w_cols = 3 * node + np.select([slot == 0, slot == 3], [0, 1], 2)
+    g = np.zeros((p, 3 * shell.z.size))
+    np.add.at(g, (np.broadcast_to(np.arange(p)[:, None, None], cols.shape), w_cols),
+              h * weights[..., None])
     return g
 
 
@@ -254,8 +262,8 @@ def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray
     angles, which = np.unique(np.round(half_angle, 12), return_inverse=True)
     for k in range(angles.size):  # impacts of one patch size share sum_n c_n^2 G_n
         rows = which == k
-        total = sum(c[i, np.flatnonzero(rows)[0]] ** 2 * gr for i, gr in enumerate(barrel.green))
-        static[rows] = np.einsum("pi,ij,pj->p", g[rows], total, g[rows])
+        total = np.tensordot(c[:, np.flatnonzero(rows)[0]] ** 2, barrel.green, axes=1)
+        static[rows] = ((g[rows] @ total) * g[rows]).sum(1)
     order_row = {n: i for i, n in enumerate(barrel.orders)}
     factor = c[[order_row[n] for n in barrel.mode_orders]].T  # (p, m)
     gain = factor * (g @ barrel.shapes)
@@ -281,7 +289,7 @@ def hoop_frequency(bat: BatModel) -> float | None:
                                  check_finite=False)
     full = np.zeros((system.node_dofs * shell.z.size, lam.size))
     full[system.free] = vec
-    deflection = np.abs(full[system.w_offset::system.node_dofs])  # |W| at the nodes
+    deflection = np.abs(full[system.w_offset::system.node_dofs])  # radial, at the nodes
     in_barrel = shell.r >= 0.99 * shell.r.max()
     for j in range(lam.size):
         if in_barrel[int(np.argmax(deflection[:, j]))]:

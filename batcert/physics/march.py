@@ -140,9 +140,15 @@ def _coefficients(system: LinearSystem, h: float, alpha: float, beta) -> _Coeffi
     n, k_modes = om.shape
     om_d = om * np.sqrt(1.0 - zeta**2)
     lam = -zeta * om + 1j * om_d
-    e1, e2 = np.exp(lam * h), np.exp(lam * h / 2)
-    p1, p2, p3 = phi_functions(lam * h)
-    q_half = 0.5 * h * phi_functions(lam * h / 2)[0]
+    # the exponentials depend on the frequencies only; impacts usually share them all
+    shared = bool(np.all(om == om[:1]))
+    lam_u = lam[:1] if shared else lam
+    e1, e2 = np.exp(lam_u * h), np.exp(lam_u * h / 2)
+    p1, p2, p3 = phi_functions(lam_u * h)
+    q_half = 0.5 * h * phi_functions(lam_u * h / 2)[0]
+    if shared:
+        e1, e2, p1, p2, p3, q_half = (np.broadcast_to(a, om.shape).copy()
+                                      for a in (e1, e2, p1, p2, p3, q_half))
     c_y = g / om_d  # contact-point displacement y = sum c_y Im(Z)
     # Z_new = e1 Z + forcing @ (F0, Fa + Fb, Fc)  (Cox & Matthews 2002, Eq. 26)
     forcing = -g[:, None, :] * np.stack([h * (p1 - 3 * p2 + 4 * p3), 2 * h * (p2 - 2 * p3),

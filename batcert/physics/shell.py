@@ -34,8 +34,11 @@ kappa_th^2 + 2 nu kappa_s kappa_th + (1 - nu)/2 tau^2)] r dtheta ds``; the kinet
 ``theta`` integrals give ``pi`` for ``n >= 1`` and ``2 pi`` (cosine terms only) for ``n = 0``.
 
 Elements: ``U`` linear, ``V`` and ``W`` cubic Hermite (``V`` cubic too, so that the
-inextensional ring modes, ``n V + W = 0``, are represented without membrane locking); node
-unknowns ``(U, V, V', W, W')`` for ``n >= 1`` and ``(U, W, W')`` for ``n = 0`` (no torsion).
+inextensional ring modes, ``n V + W = 0``, are represented without membrane locking). The node
+unknowns are global, ``(u_z, V, V', u_r, W')`` for ``n >= 1`` and ``(u_z, u_r, W')`` for ``n = 0``
+(no torsion): the axial and radial displacements, which each element turns into its own ``U``
+and ``W`` (:func:`_to_global`), so that elements of different cone angles meet consistently and
+a rigid axial translation is strain-free across a kink in the meridian.
 Four-point Gauss quadrature. Matrices include the ``theta`` integral, so that with modes
 normalised to ``phi^T M phi = 1`` a normal point force ``F`` (outward) at ``(s, theta = 0)``
 drives mode ``j`` with ``F W_j(s)``.
@@ -153,7 +156,25 @@ def _strain_matrices(shell: ShellOfRevolution, n: float, xi: np.ndarray, layout:
     b_m = np.stack([eps_s, eps_t, gamma], axis=2)
     b_b = np.stack([kap_s, kap_t, tau], axis=2)
     disp = np.stack([U, V, W], axis=2)
-    return b_m, b_b, disp, r
+    t = _to_global(sp[:, 0], cp[:, 0], lay_n)[:, None]  # (e, 1, d, d)
+    return b_m @ t, b_b @ t, disp @ t, r
+
+
+def _to_global(sin_psi: np.ndarray, cos_psi: np.ndarray, n: int) -> np.ndarray:
+    """Per element, the matrix ``T`` (e, d, d) with ``local = T global`` for the element dofs of
+    order ``n``'s layout: the node unknowns are the axial and radial displacements
+    ``(u_z, u_r)`` in the slots of ``U`` and ``W``, ``U = cos psi u_z + sin psi u_r``,
+    ``W = -sin psi u_z + cos psi u_r``; ``V``, ``V'`` and ``W'`` (the rotation of the normal)
+    are the same in every element."""
+    nd = 3 if n == 0 else 5
+    iu, iw = 0, (1 if n == 0 else 3)
+    t = np.broadcast_to(np.eye(2 * nd), (sin_psi.size, 2 * nd, 2 * nd)).copy()
+    for node in (0, nd):
+        t[:, node + iu, node + iu] = cos_psi
+        t[:, node + iu, node + iw] = sin_psi
+        t[:, node + iw, node + iu] = -sin_psi
+        t[:, node + iw, node + iw] = cos_psi
+    return t
 
 
 @dataclass(frozen=True)
@@ -252,7 +273,7 @@ def assemble(shell: ShellOfRevolution, n: int, support: bool = False) -> Harmoni
     """Global matrices of order ``n`` with the end conditions applied.
 
     Order 0 has a rigid axial translation (the beam's business, not the wall's). Without
-    ``support`` it is left free (eigenvalue 0, dropped by :func:`harmonic_modes`); with it, ``U``
+    ``support`` it is left free (eigenvalue 0, dropped by :func:`harmonic_modes`); with it, ``u_z``
     is held at the first node so that the stiffness is invertible, and :func:`static_solve`
     equilibrates the load against the translation's inertia first (inertia relief).
     """
@@ -269,7 +290,7 @@ def _with_ends(shell: ShellOfRevolution, n: int, k: np.ndarray, m: np.ndarray,
     fixed: list[int] = []
     w_off = 1 if n == 0 else 3
     for end, node in zip(shell.ends, (0, n_nodes - 1), strict=True):
-        if end == "closed":  # held round by a rigid cap: no normal or circumferential motion
+        if end == "closed":  # held round by a rigid cap: no radial or circumferential motion
             fixed += [nd * node + w_off] + ([nd * node + 1] if n else [])
     translation = None
     if n == 0 and support:
@@ -323,18 +344,23 @@ def harmonic_modes(shell: ShellOfRevolution, n: int, max_frequency: float,
 
 def normal_reader(shell: ShellOfRevolution, n: int, z: np.ndarray):
     """How to read ``W`` (the normal displacement amplitude) of order ``n`` at axial positions
-    ``z`` (any shape) from a full dof vector: the dof columns (..., 4) and Hermite weights
-    (..., 4) of the containing element; points off the shell get zero weights."""
+    ``z`` (any shape) from a full dof vector: the dof columns (..., 6) and weights (..., 6) of
+    the containing element's ``u_z``, ``u_r`` and ``W'`` at its two nodes (``W`` is cubic
+    Hermite in the element's normal displacement ``-sin psi u_z + cos psi u_r`` and its slope);
+    points off the shell get zero weights."""
     nd = shell.node_dofs(n)
     w_off = 1 if n == 0 else 3
     inside = (z >= shell.z[0]) & (z <= shell.z[-1])
     e = np.clip(np.searchsorted(shell.z, z, side="right") - 1, 0, shell.n_elements - 1)
     xi = np.clip((z - shell.z[e]) / (shell.z[e + 1] - shell.z[e]), 0.0, 1.0)
     L = shell.lengths[e]
-    h = np.stack([1 - 3 * xi**2 + 2 * xi**3, L * (xi - 2 * xi**2 + xi**3),
-                  3 * xi**2 - 2 * xi**3, L * (-xi**2 + xi**3)], axis=-1) * inside[..., None]
-    cols = np.stack([nd * e + w_off, nd * e + w_off + 1, nd * (e + 1) + w_off,
-                     nd * (e + 1) + w_off + 1], axis=-1)
+    sp = (shell.r[e + 1] - shell.r[e]) / L
+    cp = (shell.z[e + 1] - shell.z[e]) / L
+    h0, h1 = 1 - 3 * xi**2 + 2 * xi**3, L * (xi - 2 * xi**2 + xi**3)
+    h2, h3 = 3 * xi**2 - 2 * xi**3, L * (-xi**2 + xi**3)
+    h = np.stack([-sp * h0, cp * h0, h1, -sp * h2, cp * h2, h3], axis=-1) * inside[..., None]
+    cols = np.stack([nd * e, nd * e + w_off, nd * e + w_off + 1,
+                     nd * (e + 1), nd * (e + 1) + w_off, nd * (e + 1) + w_off + 1], axis=-1)
     return cols, h
 
 

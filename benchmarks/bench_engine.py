@@ -27,8 +27,8 @@ from batcert.engines import ImpactBatch  # noqa: E402
 from batcert.engines.flexible import FlexibleEngine  # noqa: E402
 from batcert.model.geometry import build_geometry  # noqa: E402
 from batcert.physics.barrel import cached_barrel_modes, clear_barrel_cache  # noqa: E402
-from batcert.specs.materials import LIBRARY  # noqa: E402
 from batcert.physics.modes import cached_modes, clear_mode_cache  # noqa: E402
+from batcert.specs.materials import LIBRARY  # noqa: E402
 
 PIVOT = 0.15  # the study's pivot [m]
 ASH = LIBRARY["ash-bat"][0]

@@ -3,9 +3,9 @@
 For barrel walls from 2.0 to 4.0 mm in the shipped ``bbcor-alloy-34`` (34 in, 2 5/8 in 7050
 barrel, 1.6 mm handle, 20 g knob, 40 g end cap; the bat file's other values kept, and no
 reconciliation: the bat's weight and MOI follow the wall, as they would for a maker) it prints
-the bat's weight and MOI about the 6 in pivot, the bat's hoop frequency (shell model, as an impact-hammer test on the free bat
-measures it), the thin-ring estimate, the free 0.3 m tube's n = 2 frequency from the shell model
-and from the independent 3-D finite-element reference (recorded in
+the bat's weight and MOI about the 6 in pivot, the bat's hoop frequency (shell model, as an
+impact-hammer test on the free bat measures it), the thin-ring estimate, the free 0.3 m tube's
+n = 2 frequency from the shell model and from the independent 3-D finite-element reference (recorded in
 tests/validation/data/fe_tube_reference.json where that wall was computed), and BBCOR and BESR
 under the shipped protocols with the flexible engine.
 
@@ -23,9 +23,9 @@ from pathlib import Path
 
 from batcert.commands.inputs import load_bat_any, load_protocol_any
 from batcert.engines import get_engine
+from batcert.model.mass import mass_properties
 from batcert.physics import barrel
 from batcert.physics.shell import ring_frequency
-from batcert.model.mass import mass_properties
 from batcert.runner.runner import run_protocol
 from batcert.units import INCH, OUNCE
 
@@ -54,8 +54,9 @@ def main(walls: list[float]) -> None:
     fe = json.loads(FE.read_text())["walls"] if FE.exists() else {}
     protocols = [load_protocol_any(p) for p in ("ncaa-bbcor", "ncaa-besr")]
     engine = get_engine("flexible")
-    print("| barrel wall [mm] | weight [oz] | MOI at 6 in [oz in^2] | bat hoop (shell) [Hz] | thin ring [Hz] | tube n=2: shell [Hz] "
-          "| tube n=2: 3-D FE [Hz] | BBCOR | BESR | BESR exit speed [mph] |")
+    print("| barrel wall [mm] | weight [oz] | MOI at 6 in [oz in^2] | bat hoop (shell) [Hz] "
+          "| thin ring [Hz] | tube n=2: shell [Hz] | tube n=2: 3-D FE [Hz] | BBCOR | BESR "
+          "| BESR exit speed [mph] |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
         for wall in walls:

@@ -56,8 +56,9 @@ def test_hoop_frequency_is_the_barrels_own_mode():
     # an impact hammer on the barrel measures: above the 4 mm ring (2678 Hz; ends stiffen it)
     # and above the lowest n = 2 frequency of the wall (measured: 2504 Hz in the taper, 2797 Hz
     # in the barrel).
-    from batcert.model.geometry import build_geometry
     from test_flexible import AL7050, BARREL_D
+
+    from batcert.model.geometry import build_geometry
 
     bat = build_geometry("thin-taper", "hollow", 0.864, [0.0, 0.02, 0.30, 0.55, 0.864],
                          [0.040, 0.024, 0.024, BARREL_D, BARREL_D], AL7050,

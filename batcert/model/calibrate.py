@@ -13,6 +13,7 @@ from dataclasses import replace
 
 from batcert.errors import ModelError
 from batcert.physics.batmodel import BatModel
+from batcert.units import INCH
 
 STIFFNESS_SCALE_BOUNDS = (0.25, 4.0)
 
@@ -63,10 +64,17 @@ def calibrate_barrel(bat: BatModel, hoop_frequency: float | None = None,
     s_k, s_m = 1.0, 1.0
     if compression is not None:
         z = bat.length - compression["position"]
-        try:
-            k_model = barrel.compression_stiffness(bat, z, compression["platen_width"])
-        except ValueError as exc:
-            raise ModelError("measured.barrel_compression.position", str(exc)) from None
+        shell = barrel.barrel_shell(bat)
+        half = 0.5 * compression["platen_width"]
+        if shell is None or z - half < shell.z[0] or z + half > shell.z[-1]:
+            span = "" if shell is None else (
+                f" (the hollow wall runs {(bat.length - shell.z[-1]) / INCH:.1f}-"
+                f"{(bat.length - shell.z[0]) / INCH:.1f} in from the tip)")
+            raise ModelError("measured.barrel_compression.position",
+                             f"the platens ({(compression['position'] - half) / INCH:.1f}-"
+                             f"{(compression['position'] + half) / INCH:.1f} in from the tip) do "
+                             f"not lie on the hollow wall{span}")
+        k_model = barrel.compression_stiffness(bat, z, compression["platen_width"])
         k_measured = compression["force"] / compression["deflection"]
         s_k = k_measured / k_model
         corr.update(model_compression_stiffness=k_model,

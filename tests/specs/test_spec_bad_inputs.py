@@ -70,6 +70,18 @@ CASES: dict[str, list[Expect]] = {
         Expect(10, "wall", "the wall (14.0 mm) fills the section at 0.5 cm from the knob (outer "
                            "diameter 25.4 mm)"),
     ],
+    "bat-hoop-on-solid.yaml": [
+        Expect(11, "measured.hoop_frequency", "only a hollow bat has a barrel to measure"),
+    ],
+    "bat-hoop-absurd.yaml": [
+        Expect(16, "measured.hoop_frequency", "matching 600 Hz needs the wall's stiffness x 0.10 "
+                                              "(model hoop frequency 1901 Hz); allowed x0.25-x4.0"),
+    ],
+    "bat-compression-off-barrel.yaml": [
+        Expect(19, "measured.barrel_compression.position", "the platens (32.5-34.5 in from the "
+               "tip) do not lie on the hollow wall (the hollow wall runs 0.0-33.9 in from the "
+               "tip)"),
+    ],
     "bat-profile-not-increasing.yaml": [
         Expect(8, "profile[2]", "must increase; 10 in follows 12 in"),
     ],

@@ -1,0 +1,88 @@
+"""Hollow bats end to end: an uncalibrated barrel carries its range into the JSON and the
+certificate; a measured hoop frequency calibrates it, and inspect shows predicted against
+measured."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from batcert.results.run import RunResult
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def calibrated_bat(tmp_path: Path, hoop: str) -> Path:
+    """aluminium-34 with a measured hoop frequency added to its measured block."""
+    text = (REPO / "bats" / "aluminium-34.yaml").read_text()
+    text = text.replace("  moi: 0.198 kg*m^2 # about the pivot\n",
+                        f"  moi: 0.198 kg*m^2 # about the pivot\n  hoop_frequency: {hoop}\n")
+    assert "hoop_frequency" in text
+    path = tmp_path / "aluminium-34-hoop.yaml"
+    path.write_text(text)
+    return path
+
+
+@pytest.fixture(scope="module")
+def uncalibrated(tmp_path_factory):
+    """`batcert run aluminium-34 -p ncaa-bbcor` with JSON and Markdown reports."""
+    from click.testing import CliRunner
+
+    from batcert.cli import main
+    out = tmp_path_factory.mktemp("reports")
+    result = CliRunner().invoke(main, ["run", "aluminium-34", "-p", "ncaa-bbcor", "--out",
+                                       str(out), "--format", "json,md"], catch_exceptions=False)
+    return result, out
+
+
+def test_uncalibrated_barrel_carries_its_range(uncalibrated):
+    result, out = uncalibrated
+    assert result.exit_code == 1  # BBCOR above 0.500
+    data = json.loads(next(out.glob("*.json")).read_text())
+    run = data["results"][0] if "results" in data else data
+    barrel = run["barrel"]
+    assert barrel["calibrated"] is False and barrel["measured_hoop_frequency"] is None
+    assert barrel["stiffness_scales"] == [0.8, 1.25] and barrel["loss_factors"] == [1e-4, 1e-2]
+    # the nominal barrel (stiffness x1, the material's loss factor 1e-4) is one of the variants
+    assert barrel["value_low"] < barrel["value_high"]
+    assert barrel["value_low"] <= run["value"] <= barrel["value_high"]
+    assert barrel["verdicts"] == ["fail"]
+    assert 1000 < barrel["hoop_frequency"] < 2500  # Russell's range (REFERENCE-DATA, H)
+    assert any("not calibrated" in w for w in run["warnings"])
+    # the JSON reads back into the result type, barrel included
+    back = RunResult.from_dict(run)
+    assert back.barrel is not None and back.barrel.value_high == barrel["value_high"]
+    md = next(out.glob("*.md")).read_text()
+    assert "Barrel not calibrated by a measurement" in md
+    assert f"{barrel['value_low']:.4f}" in md and f"{barrel['value_high']:.4f}" in md
+    assert "the verdict is fail throughout" in md
+
+
+def test_measured_hoop_frequency_calibrates_the_barrel(batcert_cli, tmp_path):
+    bat = calibrated_bat(tmp_path, "1650 Hz")
+    inspect = json.loads(batcert_cli("inspect", bat, "--json").stdout)
+    barrel = inspect["barrel"]
+    assert barrel["measured_hoop_frequency_hz"] == pytest.approx(1650.0)
+    assert barrel["hoop_frequency_hz"] == pytest.approx(1650.0, rel=1e-6)  # matched exactly
+    assert barrel["calibrated"] is True and barrel["stiffness_scale"] < 1.0  # model was 1786 Hz
+    result = batcert_cli("run", bat, "-p", "ncaa-bbcor", "--json")
+    run = json.loads(result.stdout)
+    run = run["results"][0] if "results" in run else run
+    assert run["barrel"]["calibrated"] is True
+    assert run["barrel"]["value_low"] is None and run["barrel"]["stiffness_scales"] == []
+    assert not any("not calibrated" in w for w in run["warnings"])
+
+
+def test_calibration_moves_the_result(batcert_cli, tmp_path):
+    # A softer barrel (lower hoop frequency) changes BBCOR; the calibrated value lies inside the
+    # uncalibrated range when the measured frequency lies inside the range's frequencies
+    # (x0.8-x1.25 stiffness: 1597-1997 Hz for the model's 1786 Hz).
+    nominal = json.loads(batcert_cli("run", "aluminium-34", "-p", "ncaa-bbcor", "--json").stdout)
+    nominal = nominal["results"][0] if "results" in nominal else nominal
+    soft = json.loads(batcert_cli("run", calibrated_bat(tmp_path, "1650 Hz"), "-p", "ncaa-bbcor",
+                                  "--json").stdout)
+    soft = soft["results"][0] if "results" in soft else soft
+    assert soft["value"] != pytest.approx(nominal["value"], abs=1e-4)
+    assert nominal["barrel"]["value_low"] <= soft["value"] <= nominal["barrel"]["value_high"]

@@ -21,15 +21,17 @@ def bat_dynamics(built: BuiltBat, pivot: float) -> dict:
 
 
 def barrel_summary(built: BuiltBat) -> dict:
-    """The barrel shell of a hollow bat (SI): its extent, wall and diameter at the largest
-    diameter, the model's lowest frequencies per circumferential order (free bat), the hoop
+    """The barrel shell of a hollow bat (SI): its extent, wall and diameter in the middle of the
+    full-diameter barrel, the model's lowest frequencies per circumferential order (free bat), the hoop
     (n = 2) frequency against the measured one, the thin-ring frequency for comparison, and
     the calibration applied."""
     from batcert.physics import barrel, shell
     m = built.model
     sh = barrel.barrel_shell(m)
     assert sh is not None  # a hollow bat has a wall
-    i = int(np.argmax(np.where(m.inner_diameter > 0, m.outer_diameter, -np.inf)))
+    hollow_outer = np.where(m.inner_diameter > 0, m.outer_diameter, -np.inf)
+    full = np.flatnonzero(hollow_outer >= 0.99 * hollow_outer.max())  # full-diameter slices
+    i = int(full[full.size // 2])  # the middle of the barrel
     wall = float(m.wall_thickness[i])
     outer = float(m.outer_diameter[i])
     orders = {}

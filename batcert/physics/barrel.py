@@ -253,23 +253,40 @@ def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray
     BarrelResponse
         ``gain[i, j] = c_n(beta_i) sum_k weights[i, k] W_j(points[i, k])``; ``static`` is
         ``sum_n c_n^2 f^T K_n^-1 f`` over the orders 0, 2..STATIC_ORDERS with ``f`` the
-        consistent load of the axial patch; ``residual`` is ``static`` minus the kept modes'
-        ``sum (gain / omega)^2``.
+        consistent load of the axial patch (:func:`_patch_flexibility`); ``residual`` is
+        ``static`` minus the kept modes' ``sum (gain / omega)^2``.
     """
-    g = _w_load(barrel.shell, points, weights)  # (p, 2N)
+    g = _w_load(barrel.shell, points, weights)  # (p, 3N)
     c = np.stack([circumferential_factor(n, half_angle) for n in barrel.orders])  # (orders, p)
-    static = np.zeros(points.shape[0])
-    angles, which = np.unique(np.round(half_angle, 12), return_inverse=True)
-    for k in range(angles.size):  # impacts of one patch size share sum_n c_n^2 G_n
-        rows = which == k
-        total = np.tensordot(c[:, np.flatnonzero(rows)[0]] ** 2, barrel.green, axes=1)
-        static[rows] = ((g[rows] @ total) * g[rows]).sum(1)
+    static = (c**2 * _patch_flexibility(barrel.green, g)).sum(axis=0)
     order_row = {n: i for i, n in enumerate(barrel.orders)}
     factor = c[[order_row[n] for n in barrel.mode_orders]].T  # (p, m)
     gain = factor * (g @ barrel.shapes)
     modal = (gain**2 / barrel.omega**2).sum(axis=1)
     return BarrelResponse(barrel.omega, gain, np.clip(static - modal, 0.0, None), static,
                           barrel.mode_orders)
+
+
+def _patch_flexibility(green: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """``q[n, i] = g_i^T G_n g_i`` for every order and patch, (orders, p).
+
+    A patch loads only the few nodes it covers, a contiguous band of the W space, so each patch
+    reads a band of every order's flexibility (a view, no copy); patches with the same band are
+    done together.
+    """
+    nz = g != 0
+    width = g.shape[1]
+    lo = np.argmax(nz, axis=1)
+    hi = width - np.argmax(nz[:, ::-1], axis=1)
+    q = np.zeros((green.shape[0], g.shape[0]))
+    bands, which = np.unique(np.stack([lo, hi], axis=1), axis=0, return_inverse=True)
+    for k, (a, b) in enumerate(bands):
+        rows = np.flatnonzero(which.ravel() == k)
+        if not nz[rows[0]].any():
+            continue  # a patch off the wall
+        gb = g[rows, a:b]
+        q[:, rows] = (np.matmul(gb, green[:, a:b, a:b]) * gb).sum(axis=-1)
+    return q
 
 
 def hoop_frequency(bat: BatModel) -> float | None:

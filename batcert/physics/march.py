@@ -14,8 +14,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from batcert.physics import contact
-
 _TINY = 1e-300  # floor of the compression inside log() [m]
 
 
@@ -196,8 +194,13 @@ def _step(st: _State, c: _Coefficients, h: float, force,
     l_top = np.log(st.u_top)
     f0 = force(st.u, l_top)
     if barrel_law is not None:  # the shell's share of the stored energy when the total peaks
-        k1, alpha = barrel_law
-        stored = contact.deformation_work(st.u, st.u_top, k1, alpha, c.beta)
+        alpha = barrel_law[1]
+        # the ball's net work so far (contact.deformation_work) from the force, without powers:
+        # k1 u^(1+alpha) = F u on compression; on restitution the top's F_top u_top less what
+        # the restitution branch has returned, (F_top u_top - F u) / (1 + beta)
+        fu, top = f0 * st.u, st.f_peak * st.u_top
+        stored = np.where(st.u >= st.u_top, fu / (1 + alpha),
+                          top / (1 + alpha) - (top - fu) / (1 + c.beta))
         barrel = (c.shell_energy * st.z.imag**2).sum(1)
         up = stored + barrel > st.e_peak
         st.e_peak = np.where(up, stored + barrel, st.e_peak)

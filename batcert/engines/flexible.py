@@ -250,7 +250,9 @@ class FlexibleEngine:
             :func:`rigid.momentum_outcome` (Smith 2001 Eqs. 1 and 3 when pinned). Diagnostics:
             ``contact_time`` [s], ``peak_force`` [N], ``max_compression`` of the ball [m],
             ``vibrational_energy`` left in the flexible modes (bending, shell, residual) at
-            separation [J], ``ball_energy_loss`` dissipated in the ball [J], ``e0`` [-] (the
+            separation [J], ``ball_energy_loss`` dissipated in the ball [J], ``approach_energy``
+            ``m v_rel^2 / (2 (1 + k))``, the kinetic energy of the approach in the impact's
+            frame, of which ``cor^2`` stays in the relative motion [J], ``e0`` [-] (the
             contact law's COR parameter at the end), ``separated`` [bool]; hollow bats also
             ``barrel_energy`` left in the shell modes [J] and ``barrel_energy_share``, the
             shell's share of the energy stored in ball and shell when that total peaks [-].
@@ -281,6 +283,7 @@ class FlexibleEngine:
         diag = {"contact_time": sep.time, "peak_force": sep.peak_force,
                 "max_compression": sep.max_compression,
                 "vibrational_energy": energy.sum(1), "ball_energy_loss": stored * (1 - e0**2),
+                "approach_energy": 0.5 * ball.mass / (1 + k) * batch.relative_speed**2,
                 "e0": e0, "separated": sep.separated}
         if system.shell_columns is not None:
             diag["barrel_energy"] = energy[:, system.shell_columns].sum(1)

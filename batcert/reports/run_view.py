@@ -7,7 +7,7 @@ from typing import Any
 from batcert.reports import format as fmt
 from batcert.reports.table import Table
 from batcert.results.run import RunResult
-from batcert.units import Display
+from batcert.units import Display, to_us, us_unit
 
 
 def verdict(result: RunResult) -> dict[str, Any]:
@@ -92,6 +92,42 @@ def locations_table(result: RunResult) -> Table:
     return t
 
 
+def energy_table(result: RunResult) -> Table | None:
+    """Where the energy of each impact went (flexible engine): the energy of the approach in the
+    impact's frame, ``1/2 mu v_rel^2`` with ``mu = m / (1 + k)``, what the relative motion keeps
+    (``e^2`` of it), what the ball dissipated and what is left vibrating in the bending modes and
+    in the barrel; with the contact's time, force and compression. None without diagnostics."""
+    rows = [c for c in result.conditions if c.diagnostics]
+    if not rows:
+        return None
+    hollow = any("barrel_energy" in c.diagnostics for c in rows)
+    head = ["Condition", "Contact time", "Peak force", "Ball compression", "Energy of approach",
+            "Returned (e²)", "Lost in the ball", "Left in bending"]
+    if hollow:
+        head += ["Left in the barrel", "Barrel share at peak storage"]
+    t = Table(head, numeric=[False] + [True] * (len(head) - 1))
+    for c in rows:
+        d = c.diagnostics
+        approach = d.get("approach_energy")
+        barrel = d.get("barrel_energy", 0.0)
+        row = [c.name, Display(f"{d['contact_time'] * 1e3:.2f} ms", None),
+               Display(f"{d['peak_force'] / 1e3:.1f} kN",
+                       f"{to_us(d['peak_force'], 'force'):,.0f} {us_unit('force')}"),
+               Display(f"{d['max_compression'] * 1e3:.1f} mm", None), _joules(approach),
+               _joules(None if approach is None else approach * c.cor**2),
+               _joules(d.get("ball_energy_loss")), _joules(d["vibrational_energy"] - barrel)]
+        if hollow:
+            row += [_joules(d.get("barrel_energy")),
+                    Display(fmt.DASH if d.get("barrel_energy_share") is None
+                            else f"{100 * d['barrel_energy_share']:.1f} %", None)]
+        t.rows.append(row)
+    return t
+
+
+def _joules(value: float | None) -> Display:
+    return Display(fmt.DASH if value is None else f"{value:.1f} J", None)
+
+
 def mass_table(result: RunResult) -> Table:
     mp = result.mass_properties
     t = Table(["Property", "Model (reconciled)", "Geometry", "Measured"],
@@ -162,6 +198,7 @@ def run_view(result: RunResult) -> dict[str, Any]:
         "conditions": conditions_table(result),
         "metrics": metrics_table(result),
         "locations": locations_table(result),
+        "energy": energy_table(result),
         "mass": mass_table(result),
         "bat": bat_table(result),
         "reconciliation": mp.reconciliation,

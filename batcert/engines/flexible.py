@@ -255,7 +255,7 @@ class FlexibleEngine:
             frame, of which ``cor^2`` stays in the relative motion [J], ``e0`` [-] (the
             contact law's COR parameter at the end), ``separated`` [bool]; hollow bats also
             ``barrel_energy`` left in the shell modes [J] and ``barrel_energy_share``, the
-            shell's share of the energy stored in ball and shell when that total peaks [-].
+            shell's share of the energy stored in ball and shell at the ball's maximum compression [-].
         """
         if batch.impact_location.ndim != 1:
             batch = ImpactBatch(*(np.ravel(a) for a in (

@@ -257,7 +257,8 @@ def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray
         ``static`` minus the kept modes' ``sum (gain / omega)^2``.
     """
     g = _w_load(barrel.shell, points, weights)  # (p, 3N)
-    c = np.stack([circumferential_factor(n, half_angle) for n in barrel.orders])  # (orders, p)
+    angles, which = np.unique(half_angle, return_inverse=True)  # often one patch size
+    c = np.stack([circumferential_factor(n, angles) for n in barrel.orders])[:, which.ravel()]
     static = (c**2 * _patch_flexibility(barrel.green, g)).sum(axis=0)
     order_row = {n: i for i, n in enumerate(barrel.orders)}
     factor = c[[order_row[n] for n in barrel.mode_orders]].T  # (p, m)

@@ -71,7 +71,8 @@ class Separation:
     peak_force: np.ndarray  # [N], (n,)
     max_compression: np.ndarray  # [m], (n,)
     modal: np.ndarray  # complex modal coordinates Z = p - conj(lambda) q, (n, K)
-    barrel_share: np.ndarray | None  # shell's share of the peak stored energy [-], (n,)
+    barrel_share: np.ndarray | None  # shell's share of the stored energy at the ball's
+    # maximum compression [-], (n,)
 
 
 @dataclass
@@ -95,7 +96,6 @@ class _Coefficients:
     R: np.ndarray  # (n, rows, 2K)
     beta: np.ndarray
     ab: np.ndarray  # alpha - beta
-    shell_energy: np.ndarray  # (n, K): shell potential energy = sum shell_energy * Im(Z)^2
 
     def take(self, keep: np.ndarray) -> _Coefficients:
         return _Coefficients(**{k: v[keep] for k, v in vars(self).items()})
@@ -115,8 +115,7 @@ class _State:
     f_peak: np.ndarray  # largest force so far [N]
     u_prev: np.ndarray  # compression one step earlier [m]
     du_prev: np.ndarray  # compression rate one step earlier [m/s]
-    e_peak: np.ndarray  # largest stored energy so far [J]
-    share: np.ndarray  # barrel's share of the stored energy at that peak [-]
+    share: np.ndarray  # barrel's share of the stored energy at the ball's maximum compression
     rows: np.ndarray  # index of each row in the caller's batch
 
     def take(self, keep: np.ndarray) -> _State:
@@ -128,7 +127,7 @@ class _State:
         return cls(z=np.zeros((n, k_modes), dtype=complex), w=zeros.copy(),
                    v=np.array(approach_speed, dtype=float).reshape(n), impulse=zeros.copy(),
                    u=zeros.copy(), u_top=np.full(n, _TINY), f_peak=zeros.copy(),
-                   u_prev=zeros.copy(), du_prev=zeros.copy(), e_peak=zeros.copy(),
+                   u_prev=zeros.copy(), du_prev=zeros.copy(),
                    share=zeros.copy(), rows=np.arange(n))
 
 
@@ -164,23 +163,22 @@ def _coefficients(system: LinearSystem, h: float, alpha: float, beta) -> _Coeffi
     kn = [(c_y * forcing[:, i, :].imag).sum(1) - (h * h / 6 * inv_mu if i < 2 else 0.0)
           for i in range(3)]
     beta = np.broadcast_to(np.asarray(beta, dtype=float), (n,)).copy()
-    shell = np.zeros((n, k_modes))
-    if system.shell_columns is not None:  # potential 0.5 omega^2 q^2 with q = Im(Z) / om_d
-        cols = system.shell_columns
-        shell[:, cols] = 0.5 * (om[:, cols] / om_d[:, cols]) ** 2
     return _Coefficients(
         ka=ka, b0=-h * h / 4 * inv_mu, c0=-(c_y * g * (e2 * q_half).imag).sum(1) - ka,
         cb=2 * ka, ca=-h * h / 2 * inv_mu, n0=kn[0], n1=kn[1], n2=kn[2], w6=-h * h / 6 * inv_mu,
         v6=-h / 6 * inv_mu, e1=e1, B=np.ascontiguousarray(forcing).view(float),
-        R=np.ascontiguousarray(np.stack(rows, axis=1)), beta=beta, ab=alpha - beta,
-        shell_energy=shell)
+        R=np.ascontiguousarray(np.stack(rows, axis=1)), beta=beta, ab=alpha - beta)
 
 
 def _step(st: _State, c: _Coefficients, h: float, force,
-          barrel_law: tuple[float, float] | None) -> np.ndarray:
+          shell: tuple[slice, float, float] | None) -> np.ndarray:
     """Advance every impact by one ETDRK4 step in place; return the compression at its end.
 
-    ``barrel_law`` is ``(k1, alpha)`` when the barrel's energy share is tracked, else None.
+    ``shell`` is ``(columns, k1, alpha, factor)`` when the barrel's energy share is tracked,
+    else None: the shell modes' columns, the contact law, and ``1 / (2 (1 - zeta^2))``, with
+    which the potential energy ``omega^2 q^2 / 2`` of a mode is ``factor Im(Z)^2``. The share is
+    taken when the ball's compression peaks (the stored energies' largest moment, within the
+    shell's lag), where the ball holds ``k1 u_top^(1 + alpha) / (1 + alpha)``.
     """
     base = np.matmul(c.R, st.z.view(float)[:, :, None])[:, :, 0]
     u2 = base[:, 0] + st.w + 0.5 * h * st.v
@@ -188,23 +186,18 @@ def _step(st: _State, c: _Coefficients, h: float, force,
     du = st.v + base[:, 2]
     turned = (st.du_prev > 0) & (du <= 0) & (st.u > 0)
     if turned.any():  # the maximum compression fell inside the last step: refine u_top
-        st.u_top[turned] = np.maximum(st.u_top[turned], _hermite_max(
-            st.u_prev[turned], st.du_prev[turned], st.u[turned], du[turned], h))
+        top = _hermite_max(st.u_prev[turned], st.du_prev[turned], st.u[turned], du[turned], h)
+        if shell is not None:  # the shell's share of the stored energy at the ball's maximum
+            columns, k1, alpha, factor = shell
+            rows = np.flatnonzero(turned)[top >= st.u_top[turned]]  # the largest maximum
+            top_rows = top[top >= st.u_top[turned]]
+            ball = k1 * top_rows ** (1.0 + alpha) / (1.0 + alpha)
+            barrel = factor * (st.z[rows, columns].imag ** 2).sum(1)
+            st.share[rows] = barrel / (ball + barrel)
+        st.u_top[turned] = np.maximum(st.u_top[turned], top)
     st.u_prev, st.du_prev = st.u, du
     l_top = np.log(st.u_top)
     f0 = force(st.u, l_top)
-    if barrel_law is not None:  # the shell's share of the stored energy when the total peaks
-        alpha = barrel_law[1]
-        # the ball's net work so far (contact.deformation_work) from the force, without powers:
-        # k1 u^(1+alpha) = F u on compression; on restitution the top's F_top u_top less what
-        # the restitution branch has returned, (F_top u_top - F u) / (1 + beta)
-        fu, top = f0 * st.u, st.f_peak * st.u_top
-        stored = np.where(st.u >= st.u_top, fu / (1 + alpha),
-                          top / (1 + alpha) - (top - fu) / (1 + c.beta))
-        barrel = (c.shell_energy * st.z.imag**2).sum(1)
-        up = stored + barrel > st.e_peak
-        st.e_peak = np.where(up, stored + barrel, st.e_peak)
-        st.share = np.where(up, barrel / np.where(up, stored + barrel, 1.0), st.share)
     fa = force(u2 + c.ka * f0, l_top)
     fb = force(u2 + c.ka * fa + c.b0 * f0, l_top)
     fc = force(u1 + c.c0 * f0 + c.cb * fb + c.ca * fa, l_top)
@@ -256,6 +249,13 @@ def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, t
     h = float(time_step)
     n, k_modes = system.omega.shape
     c = _coefficients(system, h, alpha, beta)
+    shell = None
+    if system.shell_columns is not None:
+        cols = np.flatnonzero(system.shell_columns)
+        if cols.size:
+            assert np.all(np.diff(cols) == 1), "shell modes must be contiguous columns"
+            shell = (slice(int(cols[0]), int(cols[-1]) + 1), k1, alpha,
+                     0.5 / (1.0 - system.zeta**2))
     hollow = system.shell_columns is not None
     lk1 = np.log(k1)
 
@@ -283,7 +283,7 @@ def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, t
         if restitution is not None:  # the ball's loss follows its compression so far
             c.beta = restitution(st.u_top)
             c.ab = alpha - c.beta
-        u_new = _step(st, c, h, force, (k1, alpha) if hollow else None)
+        u_new = _step(st, c, h, force, shell)
         t += h
         done = (u_new <= 0.0) & (st.u > 0.0)  # separation; finished rows are parked at u = -1 m
         if done.any():

@@ -104,7 +104,7 @@ def energy_table(result: RunResult) -> Table | None:
     head = ["Condition", "Contact time", "Peak force", "Ball compression", "Energy of approach",
             "Returned (e²)", "Lost in the ball", "Left in bending"]
     if hollow:
-        head += ["Left in the barrel", "Barrel share at peak storage"]
+        head += ["Left in the barrel", "Barrel share at maximum compression"]
     t = Table(head, numeric=[False] + [True] * (len(head) - 1))
     for c in rows:
         d = c.diagnostics

@@ -171,7 +171,7 @@ def _coefficients(system: LinearSystem, h: float, alpha: float, beta) -> _Coeffi
 
 
 def _step(st: _State, c: _Coefficients, h: float, force,
-          shell: tuple[slice, float, float] | None) -> np.ndarray:
+          shell: tuple[slice, float, float, float] | None) -> np.ndarray:
     """Advance every impact by one ETDRK4 step in place; return the compression at its end.
 
     ``shell`` is ``(columns, k1, alpha, factor)`` when the barrel's energy share is tracked,

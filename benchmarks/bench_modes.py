@@ -45,8 +45,7 @@ def hollow_86() -> object:
                                linear_density=al.density * area, rotary_inertia=al.density * i_area,
                                bending_stiffness=al.youngs_modulus * i_area,
                                shear_stiffness=0.5 * al.shear_modulus * area,
-                               point_masses=((0.0, 0.02), (0.8636, 0.03)),
-                               barrel_effective_width=0.05)
+                               point_masses=((0.0, 0.02), (0.8636, 0.03)))
 
 
 def ms(f) -> float:

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import hashlib
 from collections import OrderedDict
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg
@@ -100,6 +100,20 @@ class BarrelModes:
     omega: np.ndarray  # kept modes, order by order [rad/s], (m,)
     mode_orders: np.ndarray  # the order of each kept mode, (m,)
     shapes: np.ndarray  # W space shapes of the kept modes, mass-normalised, (3N, m)
+    max_frequency: float  # modes up to this frequency are kept [Hz]
+
+    def scaled(self, shell: ShellOfRevolution, stiffness: float, mass: float,
+               max_frequency: float) -> BarrelModes:
+        """The same wall with its stiffness and mass scaled (``E`` x ``stiffness``, ``rho`` x
+        ``mass``): ``K`` and ``M`` scale, the shapes do not, so ``omega`` scales with
+        ``sqrt(stiffness / mass)``, mass-normalised shapes with ``1 / sqrt(mass)`` and the
+        flexibility with ``1 / stiffness``; modes above ``max_frequency`` are dropped (they go
+        to the residual). ``shell`` is the scaled wall."""
+        omega = self.omega * np.sqrt(stiffness / mass)
+        keep = omega <= 2 * np.pi * max_frequency
+        return BarrelModes(shell, self.orders, self.green / stiffness, omega[keep],
+                           self.mode_orders[keep], self.shapes[:, keep] / np.sqrt(mass),
+                           max_frequency)
 
 
 def _orders(highest: int) -> list[int]:
@@ -167,33 +181,50 @@ def compute_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
             shapes.append(modes.vectors[w_dofs])
     return BarrelModes(shell, tuple(_orders(static_orders)), np.stack(green),
                        np.concatenate(omega), np.concatenate(orders),
-                       np.concatenate(shapes, axis=1))
+                       np.concatenate(shapes, axis=1), float(max_frequency))
 
 
-_CACHE: OrderedDict[tuple, BarrelModes | None] = OrderedDict()
+_CACHE: OrderedDict[tuple, BarrelModes | None] = OrderedDict()  # nominal walls
 
 
 def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
                         dynamic_orders: int = DYNAMIC_ORDERS,
                         static_orders: int = STATIC_ORDERS) -> BarrelModes | None:
-    """:func:`compute_barrel_modes` memoised on what the shell depends on (LRU, 8 entries of
-    about 20 MB each for a 34 in bat: the static flexibility of 40 orders)."""
+    """:func:`compute_barrel_modes`, memoised on what the wall depends on (LRU, 8 entries of
+    about 20 MB each for a 34 in bat: the static flexibility of 40 orders).
+
+    The wall is computed once at its nominal stiffness and mass; a calibrated or varied
+    barrel (``barrel_stiffness_scale``, ``barrel_mass_scale``) is that computation scaled
+    (:meth:`BarrelModes.scaled`), which is exact. The nominal modes are computed up to the
+    frequency that the scaled ones need.
+    """
+    if bat.construction != "hollow":
+        return None
+    s_k, s_m = bat.barrel_stiffness_scale, bat.barrel_mass_scale
+    needed = float(max_frequency) / np.sqrt(s_k / s_m)  # nominal modes up to this [Hz]
     h = hashlib.sha256()
     for a in (bat.z_edges, bat.outer_diameter, bat.inner_diameter, bat.linear_density):
         h.update(np.ascontiguousarray(a, dtype=float).tobytes())
     m = bat.material  # not its name or loss factor: the modes do not depend on them
-    key = (h.hexdigest(), bat.construction, m.density, m.youngs_modulus, m.poisson_ratio,
-           bat.barrel_stiffness_scale,
-           bat.barrel_mass_scale, bat.barrel_end, float(max_frequency), int(dynamic_orders),
-           int(static_orders))
-    if key in _CACHE:
+    key = (h.hexdigest(), m.density, m.youngs_modulus, m.poisson_ratio, bat.barrel_end,
+           int(dynamic_orders), int(static_orders))
+    base = _CACHE.get(key)
+    if base is not None:
         _CACHE.move_to_end(key)
-        return _CACHE[key]
-    out = compute_barrel_modes(bat, max_frequency, dynamic_orders, static_orders)
-    _CACHE[key] = out
-    while len(_CACHE) > 8:
-        _CACHE.popitem(last=False)
-    return out
+    if base is None or base.max_frequency < needed * (1 - 1e-12):
+        nominal = replace(bat, barrel_stiffness_scale=1.0, barrel_mass_scale=1.0)
+        # a margin, so that softer variants (the uncertainty range's x0.8) need no recomputation
+        cut = max(needed, 1.25 * float(max_frequency),
+                  0.0 if base is None else base.max_frequency)
+        base = compute_barrel_modes(nominal, cut, dynamic_orders, static_orders)
+        _CACHE[key] = base
+        while len(_CACHE) > 8:
+            _CACHE.popitem(last=False)
+    if base is None:
+        return None
+    shell = barrel_shell(bat)
+    assert shell is not None
+    return base.scaled(shell, s_k, s_m, float(max_frequency))
 
 
 def clear_barrel_cache() -> None:
@@ -297,8 +328,23 @@ def hoop_frequency(bat: BatModel) -> float | None:
 
     A wall that is thinner in the taper than in the barrel can have a lower n = 2 mode there
     (a 4 mm barrel over a 2.2 mm taper: 2.37 kHz in the taper, 2.77 kHz in the barrel); the
-    trampoline and the lab's hoop frequency are the barrel's.
+    trampoline and the lab's hoop frequency are the barrel's. Read from the cached modes
+    (:func:`cached_barrel_modes`; order 2 has no rigid motion, so the free and the supported
+    wall share these modes), or solved directly if the barrel's mode lies above them.
     """
+    modes = cached_barrel_modes(bat)
+    if modes is None:
+        return None
+    in_barrel = modes.shell.r >= 0.99 * modes.shell.r.max()
+    radial = np.abs(modes.shapes[1::3])  # u_r at the nodes, (N, m)
+    for j in np.flatnonzero(modes.mode_orders == 2):  # ascending within the order
+        if in_barrel[int(np.argmax(radial[:, j]))]:
+            return float(modes.omega[j] / (2 * np.pi))
+    return _hoop_frequency_direct(bat)
+
+
+def _hoop_frequency_direct(bat: BatModel) -> float | None:
+    """:func:`hoop_frequency` from the lowest eight n = 2 modes, solved afresh."""
     shell = barrel_shell(bat)
     if shell is None:
         return None

@@ -25,7 +25,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse
 
 from batcert.physics.batmodel import BatModel
 
@@ -41,8 +40,8 @@ _WXI = 0.5 * _GW  # weights on [0, 1]
 @dataclass(frozen=True)
 class _FiniteElements:
     z: np.ndarray  # node positions [m], (n_nodes,)
-    stiffness: scipy.sparse.csc_matrix  # global stiffness [N/m, N, N m], (2 n_nodes, 2 n_nodes)
-    mass: scipy.sparse.csc_matrix  # global consistent mass [kg, kg m, kg m^2], same shape
+    stiffness: np.ndarray  # global stiffness [N/m, N, N m], dense (2 n_nodes, 2 n_nodes)
+    mass: np.ndarray  # global consistent mass [kg, kg m, kg m^2], same shape
 
 
 def shape_functions(xi: np.ndarray, length: np.ndarray, phi: np.ndarray):
@@ -175,14 +174,14 @@ def assemble(bat: BatModel, nodes: np.ndarray) -> _FiniteElements:
                                 bat.linear_density[s], bat.rotary_inertia[s])
     n = 2 * z.size
     dofs = 2 * np.arange(z.size - 1)[:, None] + np.arange(4)[None, :]  # (e, 4)
-    rows = np.broadcast_to(dofs[:, :, None], k_e.shape).ravel()
-    cols = np.broadcast_to(dofs[:, None, :], k_e.shape).ravel()
+    rows = np.broadcast_to(dofs[:, :, None], k_e.shape)
+    cols = np.broadcast_to(dofs[:, None, :], k_e.shape)
     pm = np.asarray(bat.point_masses, dtype=float).reshape(-1, 2)
     j = 2 * np.abs(z[None, :] - pm[:, :1]).argmin(axis=1)
-    stiffness = scipy.sparse.csc_matrix((k_e.ravel(), (rows, cols)), shape=(n, n))
-    mass = scipy.sparse.csc_matrix((np.concatenate([m_e.ravel(), pm[:, 1]]),
-                                    (np.concatenate([rows, j]), np.concatenate([cols, j]))),
-                                   shape=(n, n))
+    stiffness, mass = np.zeros((n, n)), np.zeros((n, n))  # dense: a bat has a few hundred DOFs
+    np.add.at(stiffness, (rows, cols), k_e)
+    np.add.at(mass, (rows, cols), m_e)
+    np.add.at(mass, (j, j), pm[:, 1])
     return _FiniteElements(z=z, stiffness=stiffness, mass=mass)
 
 

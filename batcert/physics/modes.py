@@ -8,8 +8,6 @@ from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg
-import scipy.sparse.linalg
 
 from batcert.physics.batmodel import BatModel
 from batcert.physics.beam import N_RIGID, assemble, check_support, free_dofs, mesh_nodes, rigid_modes
@@ -42,26 +40,20 @@ class Modes:
         return self.omega[self.n_rigid:] / (2 * np.pi)
 
 
-_DENSE_MAX = 256  # up to this many DOFs dense LAPACK beats sparse shift-invert (measured)
-_SHIFT = -(2 * np.pi * 10.0) ** 2  # shift-invert point below every bat mode [rad^2/s^2]
-
-
-def _eigenpairs(k, m, n_skip: int, n_want: int) -> tuple[np.ndarray, np.ndarray]:
+def _eigenpairs(k: np.ndarray, m: np.ndarray, n_skip: int,
+                n_want: int) -> tuple[np.ndarray, np.ndarray]:
     """Eigenpairs ``n_skip .. n_skip + n_want - 1`` (ascending) of ``k x = lam m x``.
 
-    Dense ``scipy.linalg.eigh`` (LAPACK ``sygvx``, wanted pairs only) for small meshes; ARPACK
-    shift-invert (``scipy.sparse.linalg.eigsh``) about a point just below zero for large ones.
-    Vectors are returned mass-normalised.
+    Dense, with numpy only (a bat has a few hundred DOFs; LAPACK through numpy avoids importing
+    scipy on the run path): ``m = L L^T``, ``L^-1 k L^-T y = lam y``, ``x = L^-T y``. Vectors
+    are returned mass-normalised.
     """
-    n = k.shape[0]
-    if n <= _DENSE_MAX or n_skip + n_want >= n - 1:
-        lam, vec = scipy.linalg.eigh(k.toarray(), m.toarray(), driver="gvx", check_finite=False,
-                                     subset_by_index=[n_skip, n_skip + n_want - 1])
-    else:
-        lam, vec = scipy.sparse.linalg.eigsh(k, k=n_skip + n_want, M=m, sigma=_SHIFT,
-                                             which="LM", v0=np.ones(n))
-        order = np.argsort(lam)[n_skip:]
-        lam, vec = lam[order], vec[:, order]
+    low = np.linalg.cholesky(m)
+    inv_low = np.linalg.inv(low)  # triangular and small; numpy has no triangular solve
+    a = inv_low @ k @ inv_low.T
+    lam, y = np.linalg.eigh(0.5 * (a + a.T))
+    lam, y = lam[n_skip:n_skip + n_want], y[:, n_skip:n_skip + n_want]
+    vec = inv_low.T @ y
     vec = vec / np.sqrt(np.einsum("di,di->i", vec, m @ vec))
     return lam, vec
 
@@ -70,8 +62,8 @@ def compute_modes(bat: BatModel, support: str, pivot: float, n_modes: int = 24,
                   refine: int = 1) -> Modes:
     """Rigid-body and bending modes of ``bat``, mass-normalised.
 
-    Solves ``K phi = omega^2 M phi`` for the Timoshenko mesh of :func:`assemble` (dense LAPACK
-    for small meshes, sparse shift-invert for large ones, see :func:`_eigenpairs`). The rigid
+    Solves ``K phi = omega^2 M phi`` for the Timoshenko mesh of :func:`assemble` (dense, see
+    :func:`_eigenpairs`). The rigid
     modes are built exactly and put first with ``omega = 0``; each shape satisfies
     ``phi^T M phi = 1`` for the full mass matrix (translation, rotary inertia and point masses), so that a
     transverse point force ``F`` at ``z`` drives ``q_j'' + omega_j^2 q_j = phi_j(z) F`` (modal
@@ -109,7 +101,7 @@ def compute_modes(bat: BatModel, support: str, pivot: float, n_modes: int = 24,
     vectors = [rigid]
     omega = [np.zeros(n_rigid)]
     if n_bend > 0:
-        lam, vec = _eigenpairs(fe.stiffness[keep][:, keep], fe.mass[keep][:, keep],
+        lam, vec = _eigenpairs(fe.stiffness[np.ix_(keep, keep)], fe.mass[np.ix_(keep, keep)],
                                n_rigid, n_bend)
         full = np.zeros((fe.z.size * 2, n_bend))
         full[keep] = vec

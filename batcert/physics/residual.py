@@ -8,10 +8,8 @@ Sec. 11.3).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
-import scipy.sparse.linalg
 
 from batcert.physics.batmodel import BatModel
 from batcert.physics.beam import assemble, check_support, free_dofs, rigid_modes
@@ -89,7 +87,7 @@ def residual_compliance(bat: BatModel, modes: Modes, z_points, weights=None) -> 
     f = _distributed_loads(flex.z, zp, w)[flex.keep]
     f_eq = f - flex.m @ (flex.rigid @ (flex.rigid.T @ f))
     x = np.zeros_like(f_eq)
-    x[flex.solve] = flex.lu.solve(f_eq[flex.solve])
+    x[flex.solve] = flex.flexibility @ f_eq[flex.solve]
     x -= flex.rigid @ (flex.rigid.T @ (flex.m @ x))
     full = np.einsum("dp,dp->p", f, x)
     elastic = slice(modes.n_rigid, None)
@@ -103,9 +101,9 @@ class _Flexibility:
     z: np.ndarray  # mesh nodes [m]
     keep: np.ndarray  # retained DOFs
     rigid: np.ndarray  # rigid modes on the retained DOFs
-    m: Any  # mass matrix on the retained DOFs (sparse)
+    m: np.ndarray  # mass matrix on the retained DOFs
     solve: np.ndarray  # DOFs solved for (determinate supports removed)
-    lu: Any  # sparse LU of the stiffness on `solve` (scipy SuperLU)
+    flexibility: np.ndarray  # inverse of the stiffness on `solve` (dense: a few hundred DOFs)
 
 
 _FLEX_CACHE: dict = {}
@@ -119,14 +117,14 @@ def _flexibility(bat: BatModel, modes: Modes) -> _Flexibility:
     fe = assemble(bat, modes.z)
     keep = free_dofs(fe, modes.support, modes.pivot)
     rigid = rigid_modes(fe, modes.support, modes.pivot)[keep]
-    k = fe.stiffness[keep][:, keep]
-    m = fe.mass[keep][:, keep]
+    k = fe.stiffness[np.ix_(keep, keep)]
+    m = fe.mass[np.ix_(keep, keep)]
     # determinate supports: w at both ends (free) or w at the end farther from the pin (pinned)
     w_end = [0, keep.size - 2] if modes.support == "free" else (
         [keep.size - 2] if modes.pivot < 0.5 * (fe.z[0] + fe.z[-1]) else [0])
     solve = np.setdiff1d(np.arange(keep.size), w_end)
-    lu = scipy.sparse.linalg.splu(k[solve][:, solve].tocsc())
-    flex = _Flexibility(fe.z, keep, rigid, m, solve, lu)
+    flexibility = np.linalg.inv(k[np.ix_(solve, solve)])
+    flex = _Flexibility(fe.z, keep, rigid, m, solve, 0.5 * (flexibility + flexibility.T))
     _FLEX_CACHE[id(modes)] = (modes, flex)
     while len(_FLEX_CACHE) > 32:
         _FLEX_CACHE.pop(next(iter(_FLEX_CACHE)))

@@ -37,11 +37,11 @@ def barrel_range(bench: Bench, conds: list[Condition], locations: np.ndarray, me
                  aggregate: Aggregate, limit: LimitSpec | None) -> BarrelRange | None:
     """The barrel's calibration, or the result's range over the plausible barrel; None for a
     solid bat or an engine without a barrel (rigid)."""
-    from batcert.physics import barrel
     built = bench.built
     model = built.model
     if model.construction != "hollow" or bench.engine.name != "flexible":
         return None
+    from batcert.physics import barrel  # scipy: hollow bats only
     hoop = barrel.hoop_frequency(model)
     measured = built.spec.measured
     measured_hoop = measured.hoop_frequency if measured else None

@@ -123,3 +123,19 @@ def test_calibration_to_compression_and_frequency(bat):
     assert barrel.compression_stiffness(calibrated, bat.length - z_tip, 0.0254) == pytest.approx(
         1.5 * k_model, rel=1e-9)
     assert barrel.hoop_frequency(calibrated) == pytest.approx(f_model, rel=1e-9)
+
+
+@pytest.mark.parametrize("stiffness, mass", [(0.8, 1.0), (1.25, 1.0), (1.3, 0.9), (0.5, 1.5)])
+def test_a_scaled_barrel_equals_a_fresh_one(bat, stiffness, mass):
+    # Calibration and the uncertainty range scale the wall's E and rho; the cache derives the
+    # scaled wall from the nominal one (K and M scale, the shapes do not). Exact up to
+    # rounding: 1e-9 on frequencies and flexibility, and the same modes kept below the cut.
+    scaled = replace(bat, barrel_stiffness_scale=stiffness, barrel_mass_scale=mass)
+    derived = barrel.cached_barrel_modes(scaled)
+    fresh = barrel.compute_barrel_modes(scaled)
+    np.testing.assert_array_equal(derived.mode_orders, fresh.mode_orders)
+    np.testing.assert_allclose(derived.omega, fresh.omega, rtol=1e-9)
+    np.testing.assert_allclose(derived.green, fresh.green, rtol=0,
+                               atol=1e-9 * np.abs(fresh.green).max())
+    assert barrel.hoop_frequency(scaled) == pytest.approx(
+        barrel._hoop_frequency_direct(scaled), rel=1e-9)

@@ -1,0 +1,84 @@
+"""The installed `batcert` command as a user runs it: wall time of whole commands against
+`python -c "import numpy"` on the same machine. Prints figures; asserts nothing.
+
+    python benchmarks/bench_cli.py [--repeat N] [--json FILE]
+
+Uses the `batcert` on PATH (the installed package, with its compiled bytecode: run it after
+`pip install .`, as CI does), from a scratch directory so that shipped names resolve from the
+installation. Each command runs `--repeat` times (default 7), alternating with the numpy
+baseline so that a drifting machine loads both alike; figures are the minimum and median wall
+time and the ratio of medians to the baseline. Targets (issue 9, 2-core machine): `run
+ash-34 --protocol proposed` <= 0.25 s, `--engine rigid` <= 0.2 s, the study replay <= 0.4 s.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+COMMANDS = {
+    "run ash-34 proposed": ["run", "ash-34", "--protocol", "proposed"],
+    "run ash-34 proposed --engine rigid": ["run", "ash-34", "--protocol", "proposed",
+                                           "--engine", "rigid"],
+    "run ash-34 proposed --json": ["run", "ash-34", "--protocol", "proposed", "--json"],
+    "run aluminium-34 proposed": ["run", "aluminium-34", "--protocol", "proposed"],
+    "run aluminium-34 ncaa-bbcor": ["run", "aluminium-34", "--protocol", "ncaa-bbcor"],
+    "compare --study smith2001": ["compare", "--study", "smith2001"],
+    "inspect ash-34": ["inspect", "ash-34"],
+}
+TARGETS = {"run ash-34 proposed": 0.25, "run ash-34 proposed --engine rigid": 0.2,
+           "compare --study smith2001": 0.4}
+
+
+def wall(args: list[str], cwd: Path) -> float:
+    t0 = time.perf_counter()
+    proc = subprocess.run(args, cwd=cwd, capture_output=True, text=True)
+    elapsed = time.perf_counter() - t0
+    if proc.returncode not in (0, 1):
+        raise SystemExit(f"{' '.join(args)} failed ({proc.returncode}):\n{proc.stderr}")
+    return elapsed
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=7)
+    parser.add_argument("--json", type=Path, help="write the figures to this file")
+    args = parser.parse_args()
+    exe = shutil.which("batcert")
+    if exe is None:
+        raise SystemExit("no `batcert` on PATH: install the package first (pip install .)")
+    python = str(Path(exe).with_name("python")) if Path(exe).with_name("python").exists() \
+        else sys.executable
+    figures: dict[str, dict[str, float]] = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        cwd = Path(tmp)
+        for name, cmd in COMMANDS.items():
+            writes = cmd[0] in ("run", "compare", "league") and "--json" not in cmd
+            full = [exe, *cmd] + (["--out", str(cwd / "reports")] if writes else [])
+            wall(full, cwd)  # warm the file cache
+            times, base = [], []
+            for _ in range(args.repeat):
+                base.append(wall([python, "-c", "import numpy"], cwd))
+                times.append(wall(full, cwd))
+            med, med_base = statistics.median(times), statistics.median(base)
+            figures[name] = {"min_s": min(times), "median_s": med, "numpy_import_s": med_base,
+                             "ratio_to_numpy_import": med / med_base}
+            target = TARGETS.get(name)
+            print(f"{name:<38} median {med:5.2f} s (min {min(times):5.2f}); "
+                  f"{med / med_base:4.1f}x `import numpy` ({med_base:.3f} s)"
+                  + (f"  [target {target} s]" if target else ""))
+    if args.json:
+        args.json.write_text(json.dumps({"batcert": exe, "repeat": args.repeat,
+                                         "figures": figures}, indent=1) + "\n")
+        print(f"wrote {args.json}")
+
+
+if __name__ == "__main__":
+    main()

@@ -67,6 +67,7 @@ class Engine(Protocol):
         ``support`` is "pinned" (bat pinned at the pivot) or "free"."""
         ...
 
-    def settings(self) -> dict:
-        """Engine settings recorded in the results (time step, modes, ...)."""
+    def settings(self, bat: BatModel | None = None) -> dict:
+        """Engine settings recorded in the results (time step, modes, ...), for ``bat`` when
+        given (a setting may depend on the bat)."""
         ...

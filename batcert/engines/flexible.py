@@ -56,6 +56,14 @@ from batcert.physics.march import LinearSystem, Separation, march
 from batcert.physics.modes import Modes
 
 SUPPORTS = ("pinned", "free")
+# Accuracy-driven defaults: every exit speed of the shipped bats under the shipped protocols
+# within 0.01 % of the converged engine (48 modes, 2.5 us, shell modes to 16 kHz), half the
+# 0.02 % an exit speed needs (measured: solid 4.7e-5 at 20 us, hollow 2.1e-5 at 10 us;
+# tests/engines/test_convergence.py, benchmarks/bench_accuracy.py). A hollow barrel's contact
+# force has sharper kinks, hence its shorter step.
+DEFAULT_MODES = 16
+SOLID_STEP, HOLLOW_STEP = 20e-6, 10e-6  # [s]
+DEFAULT_SHELL_FREQUENCY = 12_000.0  # [Hz]
 BALL_LOSS = ("compression", "relative-speed")
 _PIVOT_CLEARANCE = 1e-3  # an impact closer than this to the pivot is refused [m]
 
@@ -78,9 +86,10 @@ class FlexibleEngine:
     Parameters
     ----------
     n_modes : int
-        Bending modes kept [-] (Nathan used up to 18).
-    time_step : float
-        Integration step [s]; only the contact pulse has to be resolved (module notes).
+        Bending modes kept [-] (Nathan used up to 18); the rest are residual compliance.
+    time_step : float or None
+        Integration step [s]; only the contact pulse has to be resolved (module notes). None:
+        20 us for a solid bat, 10 us for a hollow one (module constants).
     refine : int
         Beam elements per bat slice for the modes [-].
     residual : bool
@@ -110,25 +119,39 @@ class FlexibleEngine:
     name = "flexible"
     limitations: dict[str, str] = {}
 
-    def __init__(self, n_modes: int = 24, time_step: float = 1e-5, refine: int = 1,
-                 residual: bool = True, ball_loss: str = "compression",
-                 shell_max_frequency: float = 8000.0,
+    def __init__(self, n_modes: int = DEFAULT_MODES, time_step: float | None = None,
+                 refine: int = 1, residual: bool = True, ball_loss: str = "compression",
+                 shell_max_frequency: float = DEFAULT_SHELL_FREQUENCY,
                  max_contact_time: float = 0.02, record_states: bool = False,
                  contact_patch: bool = True, patch_points: int = 15) -> None:
         if n_modes < 1 or int(n_modes) != n_modes:
             raise ValueError(f"n_modes must be a positive integer, got {n_modes!r}")
-        if not 0 < time_step <= 1e-4:
+        if time_step is not None and not 0 < time_step <= 1e-4:
             raise ValueError(f"time_step must lie in (0, 1e-4] s, got {time_step!r}")
         if ball_loss not in BALL_LOSS:
             raise ValueError(f"ball_loss must be one of {BALL_LOSS}, got {ball_loss!r}")
-        self.n_modes, self.time_step, self.refine = int(n_modes), float(time_step), int(refine)
+        self.n_modes, self.refine = int(n_modes), int(refine)
+        self.time_step = None if time_step is None else float(time_step)
         self.residual, self.ball_loss = bool(residual), ball_loss
         self.shell_max_frequency = float(shell_max_frequency)
         self.max_contact_time, self.record_states = float(max_contact_time), bool(record_states)
         self.contact_patch, self.patch_points = bool(contact_patch), int(patch_points)
 
-    def settings(self) -> dict:
-        return {"engine": "flexible", "n_modes": self.n_modes, "time_step": self.time_step,
+    def step_for(self, bat: BatModel) -> float:
+        """The integration step for ``bat`` [s] (the given one, or the default for its kind)."""
+        if self.time_step is not None:
+            return self.time_step
+        return HOLLOW_STEP if bat.construction == "hollow" else SOLID_STEP
+
+    def settings(self, bat: BatModel | None = None) -> dict:
+        step: float | str
+        if bat is not None:
+            step = self.step_for(bat)
+        elif self.time_step is not None:
+            step = self.time_step
+        else:
+            step = f"{SOLID_STEP:g} (solid), {HOLLOW_STEP:g} (hollow)"
+        return {"engine": "flexible", "n_modes": self.n_modes, "time_step": step,
                 "refine": self.refine, "residual_compliance": self.residual,
                 "max_contact_time": self.max_contact_time,
                 "integrator": "ETDRK4 (Cox & Matthews 2002), exact modal propagation",
@@ -268,7 +291,7 @@ class FlexibleEngine:
         else:
             restitution = None
             beta = contact.restitution_exponent(ball.alpha, ball.cor(batch.relative_speed))
-        sep = march(system, ball.k1, ball.alpha, beta, batch.relative_speed, self.time_step,
+        sep = march(system, ball.k1, ball.alpha, beta, batch.relative_speed, self.step_for(bat),
                     self.max_contact_time, restitution)
         e0 = (contact.compression_cor(ball, sep.max_compression) if restitution is not None
               else np.asarray(ball.cor(batch.relative_speed), dtype=float))

@@ -32,7 +32,7 @@ class RigidEngine:
             raise ValueError(f"ball_loss must be one of {BALL_LOSS}, got {ball_loss!r}")
         self.ball_loss = ball_loss
 
-    def settings(self) -> dict:
+    def settings(self, bat: BatModel | None = None) -> dict:
         return {"engine": "rigid", "cor": (
             "ball rigid-wall COR at the wall speed of equal compression, v_rel / sqrt(1 + k)"
             if self.ball_loss == "compression" else "ball rigid-wall COR at the relative speed")}

@@ -20,6 +20,9 @@ def bat_dynamics(built: BuiltBat, pivot: float) -> dict:
     return out
 
 
+SUMMARY_MAX_FREQUENCY = 12_000.0  # the summary lists modes up to this [Hz]
+
+
 def barrel_summary(built: BuiltBat) -> dict:
     """The barrel shell of a hollow bat (SI): its extent, wall and diameter in the middle of the
     full-diameter barrel, the model's lowest frequencies per circumferential order (free bat), the hoop
@@ -34,10 +37,10 @@ def barrel_summary(built: BuiltBat) -> dict:
     i = int(full[full.size // 2])  # the middle of the barrel
     wall = float(m.wall_thickness[i])
     outer = float(m.outer_diameter[i])
-    orders = {}
-    for n in (0, 2, 3, 4):
-        f = shell.harmonic_modes(sh, n, 12_000.0).omega[:3] / (2 * np.pi)
-        orders[f"n={n}"] = f.tolist()
+    modes = barrel.cached_barrel_modes(m, SUMMARY_MAX_FREQUENCY)  # the engine's, cut higher
+    assert modes is not None
+    orders = {f"n={n}": (modes.omega[modes.mode_orders == n][:3] / (2 * np.pi)).tolist()
+              for n in (0, 2, 3, 4)}
     measured = built.spec.measured
     return {"start": float(sh.z[0]), "end": float(sh.z[-1]), "tip_end": m.barrel_end,
             "outer_diameter": outer, "wall": wall,

@@ -169,7 +169,7 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
         ball=ball.name, metric=p.metric, aggregate=p.aggregate, value=value,
         limit=p.limit.max if p.limit else None, tolerance=p.limit.tolerance if p.limit else 0.0,
         margin=margin, verdict=verdict, impact_rule=rule.name, engine=engine.name,
-        engine_settings=engine.settings(), support=p.support, mass_properties=mp,
+        engine_settings=engine.settings(bat), support=p.support, mass_properties=mp,
         conditions=_condition_results(conds, choice, search, final, diag, values, mp,
                                       ball.model.mass),
         inputs=inputs, batcert_version=__version__,

@@ -71,6 +71,14 @@ def _formats(value: str) -> list[str]:
     return items
 
 
+def _report_dir(out_dir: Path | None, no_reports: bool, as_json: bool) -> Path | None:
+    """Where the reports go, or None for none: ``--no-reports`` writes nothing, ``--json``
+    writes only where ``--out`` says, otherwise ``--out`` or ./reports."""
+    if no_reports or (as_json and out_dir is None):
+        return None
+    return out_dir if out_dir is not None else Path("reports")
+
+
 def _output_options(printed: str, engine_help: str = "Impact engine tier."):
     """The options shared by run, compare and league: engine, report directory and formats,
     --no-reports and --json (one definition, so the three commands cannot drift apart)."""
@@ -78,14 +86,15 @@ def _output_options(printed: str, engine_help: str = "Impact engine tier."):
         click.option("--engine", type=click.Choice(["rigid", "flexible"]), default="flexible",
                      show_default=True, help=engine_help),
         click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
-                     default=Path("reports"), show_default=True,
-                     help="Directory for the reports."),
+                     default=None, help="Directory for the reports [default: reports; with "
+                     "--json, reports are written only if --out is given]."),
         click.option("--format", "formats", default="md,html,json", show_default=True,
                      help="Report formats, comma-separated: md, html, json."),
         click.option("--no-reports", is_flag=True,
                      help=f"Print the {printed} only; write no files."),
         click.option("--json", "as_json", is_flag=True,
-                     help=f"Print only the {printed} JSON on stdout."),
+                     help=f"Print only the {printed} JSON on stdout (no report files unless "
+                          "--out is given)."),
     ]
 
     def decorate(func):
@@ -119,9 +128,10 @@ def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
     inputs = [load_protocol_any(p) for p in protocols]  # all inputs validated before running
     results = run_bat(loaded, inputs, engine)
     written: list[list[Path]] = [[] for _ in results]
-    if not no_reports:
+    target = _report_dir(out_dir, no_reports, as_json)
+    if target is not None:
         from batcert.reports.write import write_reports
-        written = [write_reports(r, out_dir, fmts) for r in results]
+        written = [write_reports(r, target, fmts) for r in results]
     if as_json:
         data = [r.to_dict() for r in results]
         console.print_json(data[0] if len(data) == 1 else data)
@@ -264,9 +274,12 @@ Exit codes:
 
 
 def _deliver(result, summary, out_dir, fmts, no_reports: bool, as_json: bool) -> None:
-    """Write the reports (unless --no-reports), then print JSON or the terminal summary."""
-    from batcert.reports.write import write_reports
-    paths = [] if no_reports else write_reports(result, out_dir, fmts)
+    """Write the reports (see :func:`_report_dir`), then print JSON or the terminal summary."""
+    target = _report_dir(out_dir, no_reports, as_json)
+    paths = []
+    if target is not None:
+        from batcert.reports.write import write_reports
+        paths = write_reports(result, target, fmts)
     if as_json:
         console.print_json(result.to_dict())
     else:

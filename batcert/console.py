@@ -1,29 +1,59 @@
-"""All terminal output goes through here: rich tables on stdout, messages on stderr.
+"""All terminal output goes through here: tables on stdout, messages on stderr.
 
-With ``--json`` only JSON is written to stdout so that scripts can parse it. Tables are the
-reports' own :class:`~batcert.reports.table.Table` objects with the reports' formatting
-(:mod:`batcert.reports.format`); every piece of user text is shown as plain text, never read as
-console markup.
+On a terminal, rich draws them (styles, wrapping to the window); piped or redirected, they are
+plain text, aligned when they fit ``COLUMNS`` (default 140) and otherwise stacked one
+``header: value`` per line, never cut. With ``--json`` only JSON is written to stdout so that
+scripts can parse it. Tables are the reports' own :class:`~batcert.reports.table.Table` objects
+with the reports' formatting (:mod:`batcert.reports.format`); every piece of user text is shown
+as plain text, never read as console markup or emoji codes.
 """
 
 from __future__ import annotations
 
 import json
+import shutil
 import sys
 from collections.abc import Sequence
+from functools import lru_cache
 from typing import Any
-
-from rich.console import Console
-from rich.table import Table as RichTable
-from rich.text import Text
 
 from batcert.reports import format as fmt
 from batcert.reports.table import Badge, Table
 
-out = Console(highlight=False, soft_wrap=True, width=None if sys.stdout.isatty() else 140)
-err = Console(stderr=True, highlight=False, soft_wrap=True)
-
 STYLES = {"pass": "green", "fail": "red", "warn": "yellow", "na": "dim", "info": "bold"}
+
+
+def _terminal(stream) -> bool:
+    """Styled output (rich) only on a terminal; plain text when piped or redirected, which
+    also spares a script the ~20 ms of importing rich."""
+    try:
+        return bool(stream.isatty())
+    except (AttributeError, ValueError):
+        return False
+
+
+@lru_cache(maxsize=2)
+def _console(stderr: bool):
+    from rich.console import Console
+
+    return Console(stderr=stderr, highlight=False, soft_wrap=True, emoji=False, markup=False)
+
+
+def _width() -> int:
+    """Columns for plain tables: ``COLUMNS`` when set (also when piped), else the terminal's,
+    else 140 (a file or a pipe: wide enough for a run's table on one line per condition)."""
+    return shutil.get_terminal_size((140, 24)).columns
+
+
+def _emit(parts: Sequence[tuple[str, str]], stderr: bool = False) -> None:
+    """One line made of (text, style) parts: styled on a terminal, plain otherwise."""
+    stream = sys.stderr if stderr else sys.stdout
+    if _terminal(stream):
+        from rich.text import Text
+
+        _console(stderr).print(Text.assemble(*parts))
+    else:
+        stream.write("".join(text for text, _ in parts) + "\n")
 
 
 def print_json(data: Any) -> None:
@@ -32,60 +62,105 @@ def print_json(data: Any) -> None:
 
 
 def error(message: str) -> None:
-    err.print(Text.assemble(("error: ", "bold red"), message))
+    _emit([("error: ", "bold red"), (message, "")], stderr=True)
 
 
 def input_error(text: str) -> None:
-    err.print(Text("invalid input", style="bold red"))
-    err.print(Text(text))
+    _emit([("invalid input", "bold red")], stderr=True)
+    _emit([(text, "")], stderr=True)
 
 
 def note(message: str) -> None:
-    err.print(Text(message))
+    _emit([(message, "")], stderr=True)
 
 
-def _cell(value: Any) -> Text:
-    if isinstance(value, Badge):
-        return Text(value.text, style=STYLES.get(value.css, ""))
-    return Text(str(value))
+def _cell_text(value: Any) -> str:
+    return value.text if isinstance(value, Badge) else str(value)
 
 
 def table(t: Table, title: str = "") -> None:
     """A report table on the terminal (summary rows after a blank line)."""
-    r = RichTable(title=Text(title or t.title) if (title or t.title) else None, box=None,
+    title = title or t.title
+    if not _terminal(sys.stdout):
+        _plain_table(t, title)
+        return
+    from rich.table import Table as RichTable
+    from rich.text import Text
+
+    def cell(value: Any) -> Text:
+        if isinstance(value, Badge):
+            return Text(value.text, style=STYLES.get(value.css, ""))
+        return Text(str(value))
+
+    r = RichTable(title=Text(title) if title else None, box=None,
                   title_justify="left", header_style="bold", pad_edge=False)
     for i, h in enumerate(t.headers):
         r.add_column(Text(h), justify="right" if t.is_numeric(i) else "left")
     for row in t.rows:
-        r.add_row(*(_cell(c) for c in row))
+        r.add_row(*(cell(c) for c in row))
     for row in t.foot:
-        r.add_row(*(_cell(c) for c in row), style="bold")
-    out.print(r)
+        r.add_row(*(cell(c) for c in row), style="bold")
+    _console(False).print(r)
+
+
+def _plain_table(t: Table, title: str) -> None:
+    """Aligned columns (headers over as many lines as they have) when they fit the width;
+    otherwise each row as ``header: value`` lines, so that nothing is ever cut."""
+    head_lines = [h.split("\n") for h in t.headers]
+    depth = max(len(h) for h in head_lines)
+    rows = [[_cell_text(c) for c in row] for row in [*t.rows, *t.foot]]
+    widths = [max([len(x) for x in h] + [len(r[i]) for r in rows])
+              for i, h in enumerate(head_lines)]
+    lines = [title] if title else []
+    if sum(widths) + 2 * (len(widths) - 1) <= _width():
+        def line(cells: Sequence[str]) -> str:
+            return "  ".join(c.rjust(w) if t.is_numeric(i) else c.ljust(w)
+                             for i, (c, w) in enumerate(zip(cells, widths, strict=True))).rstrip()
+        lines += [line([h[k] if k < len(h) else "" for h in head_lines]) for k in range(depth)]
+        lines += [line(r) for r in rows]
+    else:
+        heads = [" ".join(h) for h in head_lines]
+        label = max(len(h) for h in heads)
+        for r in rows:
+            lines += [f"{heads[0]}: {r[0]}"] + [f"  {h.ljust(label)}  {c}"
+                                                 for h, c in zip(heads[1:], r[1:], strict=True)]
+    sys.stdout.write("\n".join(lines) + "\n")
 
 
 def kv_table(title: str, rows: Sequence[tuple[str, Any]]) -> None:
-    t = RichTable(title=Text(title), show_header=False, box=None, title_justify="left",
+    t = Table(["", ""], [[k, v] for k, v in rows])
+    if not _terminal(sys.stdout):
+        label = max((len(k) for k, _ in rows), default=0)
+        sys.stdout.write("\n".join([title] + [f"{k.ljust(label)}  {_cell_text(v)}"
+                                               for k, v in rows]) + "\n")
+        return
+    from rich.table import Table as RichTable
+    from rich.text import Text
+
+    r = RichTable(title=Text(title), show_header=False, box=None, title_justify="left",
                   pad_edge=False)
-    t.add_column("", style="bold")
-    t.add_column("")
-    for k, v in rows:
-        t.add_row(Text(k), _cell(v))
-    out.print(t)
+    r.add_column("", style="bold")
+    r.add_column("")
+    for k, v in t.rows:
+        r.add_row(Text(k), Text(_cell_text(v), style=STYLES.get(getattr(v, "css", ""), "")))
+    _console(False).print(r)
 
 
-def _verdict_text(verdict: str | None) -> Text:
-    return {"pass": Text("PASS", style="bold green"), "fail": Text("FAIL", style="bold red")
-            }.get(verdict or "", Text("no limit", style="bold"))
+_VERDICT = {"pass": ("PASS", "bold green"), "fail": ("FAIL", "bold red")}
+
+
+def _verdict(verdict: str | None) -> tuple[str, str]:
+    return _VERDICT.get(verdict or "", ("no limit", "bold"))
 
 
 def _wrote(paths: Sequence[Any]) -> None:
     for p in paths:
-        out.print(Text(f"  wrote {p}"))
+        _emit([(f"  wrote {p}", "")])
 
 
 def _warnings(warnings: Sequence[str]) -> None:
     for w in warnings:
-        out.print(Text.assemble(("  warning: ", "yellow"), w))
+        _emit([("  warning: ", "yellow"), (w, "")])
 
 
 def run_summary(result, paths: Sequence[Any]) -> None:
@@ -95,12 +170,12 @@ def run_summary(result, paths: Sequence[Any]) -> None:
         f" against limit {fmt.metric_value(result.limit, m)}"
         + (f" + {result.tolerance:g}" if result.tolerance else "")
         + f", margin {fmt.metric_value(result.margin, m, signed_=True)}")
-    out.print(Text.assemble(_verdict_text(result.verdict),
-                            f"  {result.bat} \u2014 {result.protocol} ({result.protocol_title})"))
+    _emit([_verdict(result.verdict),
+           (f"  {result.bat} \u2014 {result.protocol} ({result.protocol_title})", "")])
     n = len(result.conditions)
-    out.print(Text(f"  {fmt.metric_word(m)} ({fmt.aggregate_word(result.aggregate)} of {n} "
-                   f"condition{'s' if n > 1 else ''}) = {fmt.metric_value(result.value, m)}"
-                   f"{limit}   [engine {result.engine}, {result.support}]"))
+    _emit([(f"  {fmt.metric_word(m)} ({fmt.aggregate_word(result.aggregate)} of {n} "
+             f"condition{'s' if n > 1 else ''}) = {fmt.metric_value(result.value, m)}"
+             f"{limit}   [engine {result.engine}, {result.support}]", "")])
     t = Table(["condition", "pitch\n[m/s]", "bat w1\n[rad/s]", "impact\n[m from pivot]",
                "COP\n[m]", "sweet spot\n[m]", "exit speed\n[m/s (mph)]", "COR", "BPF", "BESR",
                "BBCOR", "e_A"], numeric=[False] + [True] * 11)
@@ -122,8 +197,8 @@ def comparison_summary(result, paths: Sequence[Any]) -> None:
     condition, then the study's claims and the findings."""
     from batcert.reports.compare_view import comparison_view
     view = comparison_view(result, charts=False)
-    out.print(Text.assemble((view["title"], "bold"),
-                            f"  (reference {result.reference}; engine {result.engine})"))
+    _emit([(view["title"], "bold"),
+           (f"  (reference {result.reference}; engine {result.engine})", "")])
     for p in view["protocols"]:
         table(p["grid"], f"{p['id']} \u2014 {p['title']}")
     if view["claims"]:
@@ -131,7 +206,7 @@ def comparison_summary(result, paths: Sequence[Any]) -> None:
                     [[c["id"], c["badge"], c["evidence"]] for c in view["claims"]]),
               "study claims against the model")
     for f in result.findings:
-        out.print(Text(f"  - {f}"))
+        _emit([(f"  - {f}", "")])
     _warnings(result.warnings)
     _wrote(paths)
 
@@ -141,8 +216,9 @@ def league_summary(result, paths: Sequence[Any]) -> None:
     from batcert.reports.league_view import league_view
     view = league_view(result)
     for b in view["bats"]:
-        out.print(Text.assemble(_cell(b["badge"]), f"  {b['bat']} \u2014 {result.league} "
-                                f"({result.title})"))
+        badge = b["badge"]
+        _emit([(_cell_text(badge), STYLES.get(getattr(badge, "css", ""), "")),
+               (f"  {b['bat']} \u2014 {result.league} ({result.title})", "")])
         table(Table(["rule", "value", "limit", "verdict", "margin", "note"],
                     [[r["id"], r["value"], r["limit"], r["badge"], r["margin"], r["note"]]
                      for r in b["rules"]], [False, True, True, False, True, False]))
@@ -152,4 +228,4 @@ def league_summary(result, paths: Sequence[Any]) -> None:
 
 def note_out(message: str) -> None:
     """A plain line on stdout (e.g. ``ok  file.yaml (bat)``)."""
-    out.print(Text(message))
+    _emit([(message, "")])

@@ -5,16 +5,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from batcert.model.build import BuiltBat, build_bat
 from batcert.specs.ball import BallSpec, load_ball
 from batcert.specs.bat import load_bat
 from batcert.specs.common import sha256_of
-from batcert.specs.league import LeagueSpec, load_league
 from batcert.specs.protocol import ProtocolSpec, load_protocol
 from batcert.specs.resolve import NotFound, resolve
-from batcert.specs.study import StudySpec, load_study
 from batcert.specs.yamlio import load_yaml
+
+if TYPE_CHECKING:
+    from batcert.specs.league import LeagueSpec
+    from batcert.specs.study import StudySpec
 
 
 @dataclass(frozen=True)
@@ -62,10 +65,14 @@ def load_protocol_any(value: str, relative_to: Path | None = None) -> ProtocolIn
 
 
 def load_study_any(value: str) -> StudySpec:
+    from batcert.specs.study import load_study  # not on a run's path
+
     return load_study(resolve("study", value))
 
 
 def load_league_any(value: str) -> LeagueSpec:
+    from batcert.specs.league import load_league  # not on a run's path
+
     return load_league(resolve("league", value))
 
 

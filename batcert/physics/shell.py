@@ -297,7 +297,7 @@ def _with_ends(shell: ShellOfRevolution, n: int, k: np.ndarray, m: np.ndarray,
         translation = np.zeros(size)
         translation[0::nd] = 1.0
         fixed.append(0)
-    free = np.setdiff1d(np.arange(size), fixed)
+    free = np.delete(np.arange(size), np.asarray(fixed, dtype=int))
     m_free = m[np.ix_(free, free)]
     rigid = None
     if translation is not None:

@@ -174,6 +174,16 @@ def test_run_json_with_reports_keeps_stdout_clean(batcert_cli, tmp_path):
     assert printed == saved
 
 
+def test_json_without_out_writes_no_files(batcert_cli, tmp_path, monkeypatch):
+    # --json prints the results and writes report files only where --out says (so a script
+    # that only wants the JSON leaves nothing behind in its working directory)
+    monkeypatch.chdir(tmp_path)
+    result = batcert_cli("run", ASH, "-p", "proposed", "--json")
+    assert result.exit_code == 0 and json.loads(result.stdout)["protocol"] == "proposed"
+    assert list(tmp_path.iterdir()) == []
+    monkeypatch.chdir(REPO)
+
+
 def test_no_reports_writes_nothing(batcert_cli, tmp_path):
     out = tmp_path / "reports"
     assert _run(batcert_cli, "-p", "proposed", "--no-reports", "--out", out).exit_code == 0

@@ -16,7 +16,7 @@ from batcert.commands.inputs import (
 from batcert.engines import get_engine
 from batcert.errors import UsageProblem
 from batcert.results.compare import BatEntry, ComparisonResult
-from batcert.runner.runner import run_protocol
+from batcert.runner.runner import run_protocols
 from batcert.specs.resolve import resolve
 from batcert.specs.study import StudySpec
 
@@ -61,8 +61,9 @@ def run_comparison(bats: list[str], protocols: list[str], study: str | None = No
     proto_inputs = _protocols(spec, protocols)
     loaded, ref = _bats(bats, spec, reference)
     eng = get_engine(engine)
-    runs = [[run_protocol(b.built, p.protocol, p.ball, eng) for p in proto_inputs]
-            for b in loaded]
+    flat = run_protocols([(b.built, p.protocol, p.ball) for b in loaded for p in proto_inputs],
+                         eng)  # every bat and protocol solved together
+    runs = [flat[i * len(proto_inputs):(i + 1) * len(proto_inputs)] for i in range(len(loaded))]
     labels = bat_labels([b.built.spec.name for b in loaded], [str(b.path) for b in loaded])
     entries = [BatEntry(lab, b.built.spec.name, str(b.path), b.built.spec.sha256,
                         b.built.model.length, b.built.model.construction,

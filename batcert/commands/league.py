@@ -10,7 +10,7 @@ from batcert.commands.inputs import ProtocolInputs, load_bats, load_league_any, 
 from batcert.engines import get_engine
 from batcert.results.league import LeagueResult
 from batcert.results.run import RunResult
-from batcert.runner.runner import run_protocol
+from batcert.runner.runner import run_protocols
 
 
 def run_league(league: str, bats: list[str], engine: str = "flexible") -> LeagueResult:
@@ -24,16 +24,22 @@ def run_league(league: str, bats: list[str], engine: str = "flexible") -> League
             protocols[rule.id] = load_protocol_any(rule.protocol, relative_to=Path(spec.path))
     needed = any(needs_run(r, f) for r in spec.rules for f in facts)
     eng = get_engine(engine) if needed else None
-    per_bat = []
-    for b, f in zip(loaded, facts, strict=True):
-        runs: dict[str, RunResult] = {}
-        cache: dict[tuple[str, str], RunResult] = {}
+    # every (bat, protocol) the rules need, once, all solved together
+    wanted: dict[tuple[int, str, str], ProtocolInputs] = {}
+    for i, f in enumerate(facts):
         for rule in spec.rules:
             if eng is not None and needs_run(rule, f):
                 p = protocols[rule.id]
-                key = p.protocol.path, p.protocol.id
-                if key not in cache:
-                    cache[key] = run_protocol(b.built, p.protocol, p.ball, eng)
-                runs[rule.id] = cache[key]
+                wanted.setdefault((i, p.protocol.path, p.protocol.id), p)
+    results = dict(zip(wanted, run_protocols(
+        [(loaded[i].built, p.protocol, p.ball) for (i, _, _), p in wanted.items()], eng),
+        strict=True)) if eng is not None else {}
+    per_bat = []
+    for i, f in enumerate(facts):
+        runs: dict[str, RunResult] = {}
+        for rule in spec.rules:
+            if eng is not None and needs_run(rule, f):
+                p = protocols[rule.id]
+                runs[rule.id] = results[(i, p.protocol.path, p.protocol.id)]
         per_bat.append((f, runs))
     return evaluate_league(spec, per_bat, eng.name if eng else "none (no performance rule ran)")

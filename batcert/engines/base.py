@@ -67,6 +67,11 @@ class Engine(Protocol):
         ``support`` is "pinned" (bat pinned at the pivot) or "free"."""
         ...
 
+    def solve_many(self, jobs: list[tuple]) -> list[ImpactOutcome]:
+        """Solve several ``(bat, ball, pivot, batch, support)`` jobs at once (the runner's
+        batches of many protocols and bats); the same outcomes as :meth:`solve` one by one."""
+        ...
+
     def settings(self, bat: BatModel | None = None) -> dict:
         """Engine settings recorded in the results (time step, modes, ...), for ``bat`` when
         given (a setting may depend on the bat)."""

@@ -46,13 +46,15 @@ point's speed after impact), the rigid-body equivalent of what the vibrating bat
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from batcert.engines.base import ImpactBatch, ImpactOutcome
 from batcert.physics import contact, rigid
 from batcert.physics.ball import BallModel
 from batcert.physics.batmodel import BatModel
-from batcert.physics.march import LinearSystem, Separation, march
+from batcert.physics.march import LinearSystem, Separation, march, stack_systems
 from batcert.physics.modes import Modes
 
 SUPPORTS = ("pinned", "free")
@@ -228,9 +230,9 @@ class FlexibleEngine:
             extras["residual_omega"] = om_res
         shell_cols = np.zeros(omega.shape[1], bool)
         shell_cols[extras["n_bending"]:extras["n_bending"] + extras["n_shell"]] = True
-        system = LinearSystem(omega=np.ascontiguousarray(omega), zeta=zeta,
+        system = LinearSystem(omega=np.ascontiguousarray(omega), zeta=np.full(z.size, zeta),
                               gain=np.ascontiguousarray(gain), rigid_mass=rigid_mass,
-                              ball_mass=ball.mass,
+                              ball_mass=np.full(z.size, ball.mass),
                               shell_columns=shell_cols if shell is not None else None)
         return system, extras
 
@@ -280,27 +282,85 @@ class FlexibleEngine:
             ``barrel_energy`` left in the shell modes [J] and ``barrel_energy_share``, the
             shell's share of the energy stored in ball and shell at the ball's maximum compression [-].
         """
-        if batch.impact_location.ndim != 1:
-            batch = ImpactBatch(*(np.ravel(a) for a in (
-                batch.impact_location, batch.pitch_speed, batch.bat_angular_speed)))
-        system, extras = self.linear_system(bat, ball, pivot, batch, support, modes)
-        r, vp, w1 = batch.impact_location, batch.pitch_speed, batch.bat_angular_speed
+        return self.solve_many([(bat, ball, pivot, batch, support, modes)])[0]
+
+    def solve_many(self, jobs) -> list[ImpactOutcome]:
+        """Solve several batches, of one bat or of several (and balls, pivots, supports), in
+        as few integrations as possible: the batches that share a time step are stacked into
+        one (:func:`~batcert.physics.march.stack_systems`). ``jobs`` holds tuples ``(bat,
+        ball, pivot, batch, support[, modes])`` as :meth:`solve` takes them; the outcomes come
+        back in the same order, each exactly what :meth:`solve` gives for it alone."""
+        prepared = []
+        for job in jobs:
+            bat, ball, pivot, batch, support, *rest = job
+            if batch.impact_location.ndim != 1:
+                batch = ImpactBatch(*(np.ravel(a) for a in (
+                    batch.impact_location, batch.pitch_speed, batch.bat_angular_speed)))
+            system, extras = self.linear_system(bat, ball, pivot, batch, support,
+                                                rest[0] if rest else None)
+            prepared.append((bat, ball, pivot, batch, support, system, extras))
+        out: list[ImpactOutcome | None] = [None] * len(prepared)
+        steps: dict[float, list[int]] = {}
+        for i, job in enumerate(prepared):
+            steps.setdefault(self.step_for(job[0]), []).append(i)
+        for step, members in steps.items():
+            seps = self._integrate([prepared[i] for i in members], step)
+            for i, sep in zip(members, seps, strict=True):
+                out[i] = self._outcome(*prepared[i], sep)
+        return out  # type: ignore[return-value]
+
+    def _integrate(self, jobs: list, step: float) -> list[Separation]:
+        """One march over the stacked rows of ``jobs`` (prepared as in :meth:`solve_many`);
+        each job's :class:`Separation`, its modal columns unpadded."""
+        stacked, columns = stack_systems([j[5] for j in jobs])
+        sizes = [j[3].impact_location.size for j in jobs]
+        bounds = np.concatenate([[0], np.cumsum(sizes)])
+        balls = [j[1] for j in jobs]
+        per_row = [np.repeat([getattr(b, a) for b in balls], sizes) for a in ("k1", "alpha")]
+        relative = np.concatenate([j[3].relative_speed for j in jobs])
+        restitution: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
         if self.ball_loss == "compression":
-            restitution = contact.compression_restitution(ball)
-            beta = restitution(np.full(r.size, 1e-12))
+            laws = [contact.compression_restitution(b) for b in balls]
+            owner = np.repeat(np.arange(len(jobs)), sizes)
+
+            def by_ball(u_top, rows):
+                beta = np.empty(rows.size)
+                for k, law in enumerate(laws):
+                    mine = owner[rows] == k
+                    if mine.any():
+                        beta[mine] = law(u_top[mine], rows[mine])
+                return beta
+            restitution = by_ball
+            beta = by_ball(np.full(bounds[-1], 1e-12), np.arange(bounds[-1]))
         else:
-            restitution = None
-            beta = contact.restitution_exponent(ball.alpha, ball.cor(batch.relative_speed))
-        sep = march(system, ball.k1, ball.alpha, beta, batch.relative_speed, self.step_for(bat),
+            beta = np.concatenate([contact.restitution_exponent(b.alpha, b.cor(j[3].relative_speed))
+                                   for b, j in zip(balls, jobs, strict=True)])
+        sep = march(stacked, per_row[0], per_row[1], beta, relative, step,
                     self.max_contact_time, restitution)
-        e0 = (contact.compression_cor(ball, sep.max_compression) if restitution is not None
+        return [Separation(impulse=sep.impulse[a:b], time=sep.time[a:b],
+                           separated=sep.separated[a:b], peak_force=sep.peak_force[a:b],
+                           max_compression=sep.max_compression[a:b],
+                           modal=sep.modal[a:b][:, cols],
+                           barrel_share=None if jobs[k][5].shell_columns is None
+                           or sep.barrel_share is None else sep.barrel_share[a:b])
+                for k, (a, b, cols) in enumerate(zip(bounds[:-1], bounds[1:], columns,
+                                                      strict=True))]
+
+    def _outcome(self, bat: BatModel, ball: BallModel, pivot: float, batch: ImpactBatch,
+                 support: str, system: LinearSystem, extras: dict,
+                 sep: Separation) -> ImpactOutcome:
+        """Exit speed, momentum outcome and diagnostics of one job from its separation state."""
+        r, vp, w1 = batch.impact_location, batch.pitch_speed, batch.bat_angular_speed
+        e0 = (contact.compression_cor(ball, sep.max_compression)
+              if self.ball_loss == "compression"
               else np.asarray(ball.cor(batch.relative_speed), dtype=float))
         vb = vp + sep.impulse / ball.mass
         k = rigid.recoil_factor(bat, ball.mass, pivot, r, support)
         w2, cor = rigid.momentum_outcome(bat, ball.mass, pivot, support, r, vp, w1, vb, k)
         om = system.omega
-        q = sep.modal.imag / (om * np.sqrt(1 - system.zeta**2))
-        p = sep.modal.real - system.zeta * om * q
+        zeta = system.zeta[:, None]
+        q = sep.modal.imag / (om * np.sqrt(1 - zeta**2))
+        p = sep.modal.real - zeta * om * q
         energy = 0.5 * (p**2 + (om * q) ** 2)
         stored = ball.k1 * sep.max_compression ** (1 + ball.alpha) / (1 + ball.alpha)
         diag = {"contact_time": sep.time, "peak_force": sep.peak_force,
@@ -315,8 +375,6 @@ class FlexibleEngine:
             diag.update(_states(system, extras, sep, q, p, pivot, w1 * r, w1))
         return ImpactOutcome(exit_speed=vb, bat_angular_speed_after=w2, cor=cor, recoil_factor=k,
                              diagnostics=diag)
-
-
 
 
 def _check_batch(bat: BatModel, pivot: float, batch: ImpactBatch, support: str) -> None:

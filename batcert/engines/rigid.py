@@ -37,6 +37,10 @@ class RigidEngine:
             "ball rigid-wall COR at the wall speed of equal compression, v_rel / sqrt(1 + k)"
             if self.ball_loss == "compression" else "ball rigid-wall COR at the relative speed")}
 
+    def solve_many(self, jobs: list[tuple]) -> list[ImpactOutcome]:
+        """Closed forms cost nothing per call: :meth:`solve` for each job."""
+        return [self.solve(*job) for job in jobs]
+
     def solve(self, bat: BatModel, ball: BallModel, pivot: float, batch: ImpactBatch,
               support: str = "pinned") -> ImpactOutcome:
         r, vp, w1 = batch.impact_location, batch.pitch_speed, batch.bat_angular_speed

@@ -200,10 +200,11 @@ def compression_cor(ball: BallModel, compression) -> np.ndarray:
 
 
 def compression_restitution(ball: BallModel):
-    """``beta(u_top)``: the restitution exponent of :func:`restitution_exponent` for the
+    """``beta(u_top, rows)``: the restitution exponent of :func:`restitution_exponent` for the
     :func:`compression_cor` at the largest compression so far, for :func:`march` to re-evaluate
-    as the ball compresses (fixed once the compression has peaked)."""
-    def beta(u_top):
+    as the ball compresses (fixed once the compression has peaked); ``rows`` (which impacts)
+    does not matter for one ball."""
+    def beta(u_top, rows=None):
         e0 = compression_cor(ball, u_top)
         return (1.0 + ball.alpha) / e0**2 - 1.0
     return beta

@@ -11,6 +11,7 @@ builds the :class:`LinearSystem` of each impact and reads the :class:`Separation
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -45,20 +46,73 @@ def phi_functions(z):
 class LinearSystem:
     """The linear part of every impact: merged rigid/ball coordinate and flexible coupled modes.
 
-    Arrays have one row per impact; ``K`` columns of flexible modes.
+    Arrays have one row per impact; ``K`` columns of flexible modes. Impacts of several bats
+    (and balls) can share one system: ``zeta`` and ``ball_mass`` are per row, and ``blocks``
+    names the runs of rows that share their frequencies and damping (one bat each), so that the
+    step's exponentials are computed once per block.
     """
 
     omega: np.ndarray  # coupled angular frequencies [rad/s], (n, K)
-    zeta: float  # modal damping ratio [-]
+    zeta: np.ndarray  # modal damping ratio [-], (n,)
     gain: np.ndarray  # mode shape at the contact point, ``g`` [1/sqrt(kg)], (n, K)
     rigid_mass: np.ndarray  # rigid mass met at the contact point (bat + barrel) [kg], (n,)
-    ball_mass: float  # [kg]
+    ball_mass: np.ndarray  # [kg], (n,)
     shell_columns: np.ndarray | None = None  # (K,) bool: the hollow barrel's shell modes
+    blocks: tuple[tuple[int, int], ...] | None = None  # row ranges [start, stop) of one bat
+
+    def __post_init__(self) -> None:
+        n = self.omega.shape[0]
+        self.zeta = np.broadcast_to(np.asarray(self.zeta, dtype=float), (n,)).copy()
+        self.ball_mass = np.broadcast_to(np.asarray(self.ball_mass, dtype=float), (n,)).copy()
+        if self.blocks is None:
+            self.blocks = ((0, n),)
 
     @property
     def inv_reduced_mass(self) -> np.ndarray:
         """``1/m + 1/M_r`` [1/kg], (n,)."""
         return 1.0 / self.ball_mass + 1.0 / self.rigid_mass
+
+
+def stack_systems(systems: list[LinearSystem]) -> tuple[LinearSystem, list[np.ndarray]]:
+    """One system of the rows of several (e.g. several bats), and for each the columns its
+    modes occupy in it. Columns are aligned by kind, bending modes first, then shell modes,
+    then the rest (the residual), each group padded with modes of zero gain that nothing
+    drives, so that the shell's columns are common to every row."""
+    if len(systems) == 1:
+        return systems[0], [np.arange(systems[0].omega.shape[1])]
+
+    def groups(sy: LinearSystem) -> tuple[int, int, int]:
+        k = sy.omega.shape[1]
+        if sy.shell_columns is None or not sy.shell_columns.any():
+            return k, 0, 0
+        cols = np.flatnonzero(sy.shell_columns)
+        return int(cols[0]), cols.size, k - int(cols[0]) - cols.size
+
+    sizes = [groups(sy) for sy in systems]
+    width = [max(g[i] for g in sizes) for i in range(3)]
+    offsets = [0, width[0], width[0] + width[1]]
+    omega, gain, blocks, columns, start = [], [], [], [], 0
+    for sy, g in zip(systems, sizes, strict=True):
+        n = sy.omega.shape[0]
+        cols = np.concatenate([offsets[i] + np.arange(g[i]) for i in range(3)])
+        om = np.ones((n, sum(width)))  # padding: 1 rad/s, zero gain, never driven
+        gn = np.zeros((n, sum(width)))
+        om[:, cols], gn[:, cols] = sy.omega, sy.gain
+        omega.append(om)
+        gain.append(gn)
+        columns.append(cols)
+        blocks += [(start + a, start + b) for a, b in sy.blocks or ((0, n),)]
+        start += n
+    shell = None
+    if width[1]:
+        shell = np.zeros(sum(width), bool)
+        shell[offsets[1]:offsets[2]] = True
+    stacked = LinearSystem(
+        omega=np.concatenate(omega), zeta=np.concatenate([sy.zeta for sy in systems]),
+        gain=np.concatenate(gain), rigid_mass=np.concatenate([sy.rigid_mass for sy in systems]),
+        ball_mass=np.concatenate([sy.ball_mass for sy in systems]), shell_columns=shell,
+        blocks=tuple(blocks))
+    return stacked, columns
 
 
 @dataclass
@@ -73,6 +127,13 @@ class Separation:
     modal: np.ndarray  # complex modal coordinates Z = p - conj(lambda) q, (n, K)
     barrel_share: np.ndarray | None  # shell's share of the stored energy at the ball's
     # maximum compression [-], (n,)
+
+    @classmethod
+    def concatenate(cls, parts: list[Separation]) -> Separation:
+        def cat(name: str) -> Any:
+            first = getattr(parts[0], name)
+            return None if first is None else np.concatenate([getattr(p, name) for p in parts])
+        return cls(**{name: cat(name) for name in vars(parts[0])})
 
 
 @dataclass
@@ -96,6 +157,9 @@ class _Coefficients:
     R: np.ndarray  # (n, rows, 2K)
     beta: np.ndarray
     ab: np.ndarray  # alpha - beta
+    lk1: np.ndarray  # log k1 of each impact's ball
+    alpha: np.ndarray  # each impact's compression exponent
+    shell_factor: np.ndarray  # 1 / (2 (1 - zeta^2)): shell potential energy per Im(Z)^2
 
     def take(self, keep: np.ndarray) -> _Coefficients:
         return _Coefficients(**{k: v[keep] for k, v in vars(self).items()})
@@ -131,21 +195,23 @@ class _State:
                    share=zeros.copy(), rows=np.arange(n))
 
 
-def _coefficients(system: LinearSystem, h: float, alpha: float, beta) -> _Coefficients:
+def _coefficients(system: LinearSystem, h: float, k1, alpha, beta) -> _Coefficients:
     """The step constants of every impact (see :func:`march`)."""
-    om, g, zeta = system.omega, system.gain, system.zeta
+    om, g = system.omega, system.gain
     n, k_modes = om.shape
+    zeta = system.zeta[:, None]
     om_d = om * np.sqrt(1.0 - zeta**2)
     lam = -zeta * om + 1j * om_d
-    # the exponentials depend on the frequencies only; impacts usually share them all
-    shared = bool(np.all(om == om[:1]))
-    lam_u = lam[:1] if shared else lam
-    e1, e2 = np.exp(lam_u * h), np.exp(lam_u * h / 2)
-    p1, p2, p3 = phi_functions(lam_u * h)
-    q_half = 0.5 * h * phi_functions(lam_u * h / 2)[0]
-    if shared:
-        e1, e2, p1, p2, p3, q_half = (np.broadcast_to(a, om.shape).copy()
-                                      for a in (e1, e2, p1, p2, p3, q_half))
+    # the exponentials depend on the frequencies and damping only: once per block of rows
+    # that share them (one bat), broadcast to its rows
+    e1, e2, p1, p2, p3, q_half = (np.empty((n, k_modes), complex) for _ in range(6))
+    for a, b in system.blocks or ((0, n),):
+        same = bool(np.all(om[a:b] == om[a:a + 1]))
+        lb = lam[a:a + 1] if same else lam[a:b]
+        vals = (np.exp(lb * h), np.exp(lb * h / 2), *phi_functions(lb * h),
+                0.5 * h * phi_functions(lb * h / 2)[0])
+        for target, v in zip((e1, e2, p1, p2, p3, q_half), vals, strict=True):
+            target[a:b] = v
     c_y = g / om_d  # contact-point displacement y = sum c_y Im(Z)
     # Z_new = e1 Z + forcing @ (F0, Fa + Fb, Fc)  (Cox & Matthews 2002, Eq. 26)
     forcing = -g[:, None, :] * np.stack([h * (p1 - 3 * p2 + 4 * p3), 2 * h * (p2 - 2 * p3),
@@ -162,22 +228,28 @@ def _coefficients(system: LinearSystem, h: float, alpha: float, beta) -> _Coeffi
     ka = -(c_y * g * q_half.imag).sum(1)
     kn = [(c_y * forcing[:, i, :].imag).sum(1) - (h * h / 6 * inv_mu if i < 2 else 0.0)
           for i in range(3)]
-    beta = np.broadcast_to(np.asarray(beta, dtype=float), (n,)).copy()
+    per_row = [np.broadcast_to(np.asarray(x, dtype=float), (n,)).copy() for x in (k1, alpha, beta)]
+    k1, alpha, beta = per_row
     return _Coefficients(
         ka=ka, b0=-h * h / 4 * inv_mu, c0=-(c_y * g * (e2 * q_half).imag).sum(1) - ka,
         cb=2 * ka, ca=-h * h / 2 * inv_mu, n0=kn[0], n1=kn[1], n2=kn[2], w6=-h * h / 6 * inv_mu,
         v6=-h / 6 * inv_mu, e1=e1, B=np.ascontiguousarray(forcing).view(float),
-        R=np.ascontiguousarray(np.stack(rows, axis=1)), beta=beta, ab=alpha - beta)
+        R=np.ascontiguousarray(np.stack(rows, axis=1)), beta=beta, ab=alpha - beta,
+        lk1=np.log(k1), alpha=alpha, shell_factor=0.5 / (1.0 - system.zeta**2))
 
 
-def _step(st: _State, c: _Coefficients, h: float, force,
-          shell: tuple[slice, float, float, float] | None) -> np.ndarray:
+def _force(c: _Coefficients, x: np.ndarray, l_top: np.ndarray) -> np.ndarray:
+    """:func:`contact.contact_force` in log form, both branches in one exp [N]."""
+    lx = np.log(np.maximum(x, _TINY))
+    return np.exp(c.lk1 + c.ab * np.maximum(lx, l_top) + c.beta * lx)
+
+
+def _step(st: _State, c: _Coefficients, h: float, shell: slice | None) -> np.ndarray:
     """Advance every impact by one ETDRK4 step in place; return the compression at its end.
 
-    ``shell`` is ``(columns, k1, alpha, factor)`` when the barrel's energy share is tracked,
-    else None: the shell modes' columns, the contact law, and ``1 / (2 (1 - zeta^2))``, with
-    which the potential energy ``omega^2 q^2 / 2`` of a mode is ``factor Im(Z)^2``. The share is
-    taken when the ball's compression peaks (the stored energies' largest moment, within the
+    ``shell`` is the shell modes' columns when the barrel's energy share is tracked, else
+    None; a mode's potential energy ``omega^2 q^2 / 2`` is ``shell_factor Im(Z)^2``. The share
+    is taken when the ball's compression peaks (the stored energies' largest moment, within the
     shell's lag), where the ball holds ``k1 u_top^(1 + alpha) / (1 + alpha)``.
     """
     base = np.matmul(c.R, st.z.view(float)[:, :, None])[:, :, 0]
@@ -188,19 +260,19 @@ def _step(st: _State, c: _Coefficients, h: float, force,
     if turned.any():  # the maximum compression fell inside the last step: refine u_top
         top = _hermite_max(st.u_prev[turned], st.du_prev[turned], st.u[turned], du[turned], h)
         if shell is not None:  # the shell's share of the stored energy at the ball's maximum
-            columns, k1, alpha, factor = shell
             rows = np.flatnonzero(turned)[top >= st.u_top[turned]]  # the largest maximum
             top_rows = top[top >= st.u_top[turned]]
-            ball = k1 * top_rows ** (1.0 + alpha) / (1.0 + alpha)
-            barrel = factor * (st.z[rows, columns].imag ** 2).sum(1)
+            a1 = 1.0 + c.alpha[rows]
+            ball = np.exp(c.lk1[rows] + a1 * np.log(top_rows)) / a1
+            barrel = c.shell_factor[rows] * (st.z[rows, shell].imag ** 2).sum(1)
             st.share[rows] = barrel / (ball + barrel)
         st.u_top[turned] = np.maximum(st.u_top[turned], top)
     st.u_prev, st.du_prev = st.u, du
     l_top = np.log(st.u_top)
-    f0 = force(st.u, l_top)
-    fa = force(u2 + c.ka * f0, l_top)
-    fb = force(u2 + c.ka * fa + c.b0 * f0, l_top)
-    fc = force(u1 + c.c0 * f0 + c.cb * fb + c.ca * fa, l_top)
+    f0 = _force(c, st.u, l_top)
+    fa = _force(c, u2 + c.ka * f0, l_top)
+    fb = _force(c, u2 + c.ka * fa + c.b0 * f0, l_top)
+    fc = _force(c, u1 + c.c0 * f0 + c.cb * fb + c.ca * fa, l_top)
     fab = fa + fb
     f_vec = np.stack([f0, fab, fc], axis=1)[:, None, :]
     st.z = c.e1 * st.z + np.matmul(f_vec, c.B)[:, 0, :].view(complex)
@@ -214,8 +286,8 @@ def _step(st: _State, c: _Coefficients, h: float, force,
     return u_new
 
 
-def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, time_step: float,
-          max_time: float, restitution=None) -> Separation:
+def march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: float,
+          max_time: float, restitution=None, chunk: int = 4096) -> Separation:
     """Integrate all impacts from first touch to separation (ETDRK4; module notes).
 
     State per impact (:class:`_State`): complex modal coordinates ``Z`` (n, K), the merged
@@ -225,14 +297,15 @@ def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, t
     ``u_c = U1 + c0 F0 + cb Fb + ca Fa`` and at the step end ``U1 + n0 F0 + n1 (Fa + Fb) +
     n2 Fc``, where ``U2``, ``U1`` are the free (force-less) motions over h/2 and h, read from
     ``Z`` with one matrix product. Finished impacts are recorded and, once they are many,
-    dropped from the arrays (:meth:`_State.take`).
+    dropped from the arrays (:meth:`_State.take`). Batches larger than ``chunk`` impacts are
+    integrated ``chunk`` at a time, so that memory stays bounded whatever the batch.
 
     Parameters
     ----------
     system : LinearSystem
         Linear part of each impact.
-    k1, alpha : float
-        Contact law, compression branch [N/m^alpha], [-].
+    k1, alpha : array_like
+        Contact law of each impact's ball, compression branch [N/m^alpha], [-]; scalars or (n,).
     beta : array_like
         Restitution exponent per impact [-], (n,).
     approach_speed : array_like
@@ -242,26 +315,50 @@ def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, t
     max_time : float
         Safety cap on the contact time [s].
     restitution : callable, optional
-        ``beta(u_top)``: the restitution exponent as a function of the largest compression so
-        far [m] (:func:`contact.compression_restitution`), re-evaluated every step; without it
-        ``beta`` stays as given.
+        ``beta(u_top, rows)``: the restitution exponent of impacts ``rows`` (indices into the
+        batch) as a function of their largest compression so far [m]
+        (:func:`contact.compression_restitution`), re-evaluated every step; without it ``beta``
+        stays as given.
     """
+    n = system.omega.shape[0]
+    if n <= chunk:
+        return _march(system, k1, alpha, beta, approach_speed, time_step, max_time, restitution)
+    k1, alpha, beta, speed = (np.broadcast_to(np.asarray(x, dtype=float), (n,))
+                              for x in (k1, alpha, beta, approach_speed))
+    parts = []
+    for a in range(0, n, chunk):
+        b = min(a + chunk, n)
+        parts.append(_march(_rows(system, a, b), k1[a:b], alpha[a:b], beta[a:b], speed[a:b],
+                            time_step, max_time,
+                            None if restitution is None else _offset(restitution, a)))
+    return Separation.concatenate(parts)
+
+
+def _offset(restitution, start: int):
+    return lambda u_top, rows: restitution(u_top, rows + start)
+
+
+def _rows(system: LinearSystem, a: int, b: int) -> LinearSystem:
+    """Rows ``a:b`` of a system, its blocks clipped to them."""
+    blocks = tuple((max(s, a) - a, min(e, b) - a) for s, e in system.blocks or ((0, b),)
+                   if s < b and e > a)
+    return LinearSystem(omega=system.omega[a:b], zeta=system.zeta[a:b], gain=system.gain[a:b],
+                        rigid_mass=system.rigid_mass[a:b], ball_mass=system.ball_mass[a:b],
+                        shell_columns=system.shell_columns, blocks=blocks)
+
+
+def _march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: float,
+           max_time: float, restitution=None) -> Separation:
     h = float(time_step)
     n, k_modes = system.omega.shape
-    c = _coefficients(system, h, alpha, beta)
+    c = _coefficients(system, h, k1, alpha, beta)
     shell = None
     if system.shell_columns is not None:
         cols = np.flatnonzero(system.shell_columns)
         if cols.size:
             assert np.all(np.diff(cols) == 1), "shell modes must be contiguous columns"
-            shell = (slice(int(cols[0]), int(cols[-1]) + 1), k1, alpha,
-                     0.5 / (1.0 - system.zeta**2))
+            shell = slice(int(cols[0]), int(cols[-1]) + 1)
     hollow = system.shell_columns is not None
-    lk1 = np.log(k1)
-
-    def force(x, l_top):  # contact_force() in log form, both branches in one exp
-        lx = np.log(np.maximum(x, _TINY))
-        return np.exp(lk1 + c.ab * np.maximum(lx, l_top) + c.beta * lx)
 
     st = _State.start(n, k_modes, approach_speed)
     live = np.ones(n, dtype=bool)
@@ -281,9 +378,9 @@ def march(system: LinearSystem, k1: float, alpha: float, beta, approach_speed, t
     t = 0.0
     for _ in range(int(np.ceil(max_time / h))):
         if restitution is not None:  # the ball's loss follows its compression so far
-            c.beta = restitution(st.u_top)
-            c.ab = alpha - c.beta
-        u_new = _step(st, c, h, force, shell)
+            c.beta = restitution(st.u_top, st.rows)
+            c.ab = c.alpha - c.beta
+        u_new = _step(st, c, h, shell)
         t += h
         done = (u_new <= 0.0) & (st.u > 0.0)  # separation; finished rows are parked at u = -1 m
         if done.any():

@@ -33,13 +33,16 @@ PLAUSIBLE_STIFFNESS = (0.8, 1.25)  # barrel stiffness scales explored [-]
 PLAUSIBLE_LOSS = (1e-4, 1e-2)  # wall loss factors explored [-]
 
 
-def barrel_range(bench: Bench, conds: list[Condition], locations: np.ndarray, metric: Metric,
-                 aggregate: Aggregate, limit: LimitSpec | None) -> BarrelRange | None:
+def barrel_range_steps(bench: Bench, conds: list[Condition], locations: np.ndarray,
+                       metric: Metric, aggregate: Aggregate, limit: LimitSpec | None):
     """The barrel's calibration, or the result's range over the plausible barrel; None for a
-    solid bat or an engine without a barrel (rigid)."""
+    solid bat or an engine without a barrel (rigid). A generator: it yields the variants'
+    requests once (an empty list when there are none), is sent their results, and returns
+    the :class:`BarrelRange`."""
     built = bench.built
     model = built.model
     if model.construction != "hollow" or bench.engine.name != "flexible":
+        yield []
         return None
     from batcert.physics import barrel  # scipy: hollow bats only
     hoop = barrel.hoop_frequency(model)
@@ -47,6 +50,7 @@ def barrel_range(bench: Bench, conds: list[Condition], locations: np.ndarray, me
     measured_hoop = measured.hoop_frequency if measured else None
     compression = measured.barrel_compression if measured else None
     if measured_hoop is not None or compression is not None:
+        yield []
         parts = []
         if compression is not None:
             parts.append("a barrel compression test")
@@ -58,11 +62,9 @@ def barrel_range(bench: Bench, conds: list[Condition], locations: np.ndarray, me
                 for s in PLAUSIBLE_STIFFNESS]
     variants += [replace(model, material=replace(model.material, loss_factor=eta))
                  for eta in PLAUSIBLE_LOSS]
-    values = []
-    for variant in variants:
-        trial = replace(bench, built=replace(built, model=variant))
-        final, _ = trial.solve(conds, locations[:, None])
-        values.append(aggregate.combine(metric.value(final)[:, 0]))
+    answers = yield [replace(bench, built=replace(built, model=v)).request(
+        conds, locations[:, None]) for v in variants]
+    values = [aggregate.combine(metric.value(final)[:, 0]) for final, _ in answers]
     verdicts = []
     if limit is not None:
         verdicts = sorted({"pass" if limit.max + limit.tolerance - v >= 0 else "fail"

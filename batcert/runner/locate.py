@@ -69,19 +69,21 @@ class Search:
     peaks: Peaks
 
 
-def locate(bench: Bench, conds: list[Condition], location: LocationSpec, metric: Metric,
-           needs_metric_peak: bool, cop: float) -> Search:
-    """Sweep the window and locate each condition's sweet spot (and metric maximum)."""
+def locate_steps(bench: Bench, conds: list[Condition], location: LocationSpec, metric: Metric,
+                 needs_metric_peak: bool, cop: float):
+    """Sweep the window and locate each condition's sweet spot (and metric maximum): two steps
+    for :func:`batcert.runner.runner.drive`, the coarse sweep and the refinement. Returns the
+    :class:`Search`."""
     bat = bench.built.model
     tip = bat.length - bench.pivot
     n = len(conds)
     grid = sweep_grid(bat.length, bench.pivot, location.window, location.sweep_points)
-    coarse, _ = bench.solve(conds, np.tile(grid, (n, 1)))
+    ((coarse, _),) = yield [bench.request(conds, np.tile(grid, (n, 1)))]
     m_coarse = metric.value(coarse)
     targets = [coarse.exit_speed] + ([m_coarse] if needs_metric_peak else [])
     fine_r = np.concatenate([refine_grid(grid, np.argmax(t, axis=1), location.resolution)
                              for t in targets])
-    fine, _ = bench.solve(conds * len(targets), fine_r)
+    ((fine, _),) = yield [bench.request(conds * len(targets), fine_r)]
     sweet, _ = parabolic_peak(fine_r[:n], fine.exit_speed[:n])
     sweet_edge = _on_edge(coarse.exit_speed)
     peak, peak_edge, flat = sweet, sweet_edge, np.zeros(n, bool)

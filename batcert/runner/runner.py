@@ -9,13 +9,14 @@ and locate the peaks (:mod:`batcert.runner.locate`), let the impact rule choose 
 from __future__ import annotations
 
 import datetime as _dt
+from collections.abc import Generator
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from batcert import __version__
-from batcert.engines.base import Engine, ImpactBatch
+from batcert.engines.base import Engine, ImpactBatch, ImpactOutcome
 from batcert.methods.metrics import AGGREGATES, METRICS, ImpactMetrics, impact_metrics
 from batcert.methods.rules import IMPACT_RULES, Choice
 from batcert.model.build import BuiltBat
@@ -24,9 +25,9 @@ from batcert.model.mass import mass_properties
 from batcert.physics import rigid
 from batcert.physics.batmodel import BatModel
 from batcert.results.run import BarrelRange, ConditionResult, InputFile, MassProperties, RunResult, Sweep
-from batcert.runner.barrel_range import barrel_range
+from batcert.runner.barrel_range import barrel_range_steps
 from batcert.runner.conditions import Condition, conditions_from_spec
-from batcert.runner.locate import Search, locate
+from batcert.runner.locate import Search, locate_steps
 from batcert.specs.ball import BallSpec
 from batcert.specs.protocol import LimitSpec, ProtocolSpec
 
@@ -45,20 +46,73 @@ class Bench:
     pivot: float  # [m from knob]
     support: str  # pinned | free
 
-    def solve(self, conds: list[Condition], locations: np.ndarray
-              ) -> tuple[ImpactMetrics, dict[str, np.ndarray]]:
-        """Solve every condition at its row of ``locations`` (shape (n_cond, n_loc)) in one
-        batch: the metrics and the engine's diagnostics, shaped like ``locations``."""
+    def request(self, conds: list[Condition], locations: np.ndarray) -> Request:
+        """Every condition at its row of ``locations`` (shape (n_cond, n_loc)), as one batch."""
         r = np.asarray(locations, float)
         vp, w1 = zip(*(c.speeds(row) for c, row in zip(conds, r, strict=True)), strict=True)
-        batch = ImpactBatch(r.ravel(), np.stack(vp).ravel(), np.stack(w1).ravel())
-        out = self.engine.solve(self.built.model, self.ball.model, self.pivot, batch,
-                                self.support)
+        return Request(self, r.shape, ImpactBatch(r.ravel(), np.stack(vp).ravel(),
+                                                  np.stack(w1).ravel()))
+
+    def solve(self, conds: list[Condition], locations: np.ndarray
+              ) -> tuple[ImpactMetrics, dict[str, np.ndarray]]:
+        """Solve one request now: the metrics and the engine's diagnostics, shaped like
+        ``locations``."""
+        req = self.request(conds, locations)
+        return req.finish(self.engine.solve(*req.job()))
+
+
+@dataclass(frozen=True)
+class Request:
+    """One batch a protocol run needs solved; :func:`drive` solves the requests of many runs
+    together."""
+
+    bench: Bench
+    shape: tuple[int, ...]
+    batch: ImpactBatch
+
+    def job(self) -> tuple:
+        b = self.bench
+        return (b.built.model, b.ball.model, b.pivot, self.batch, b.support)
+
+    def finish(self, out: ImpactOutcome) -> tuple[ImpactMetrics, dict[str, np.ndarray]]:
+        batch, ball = self.batch, self.bench.ball.model
         m = impact_metrics(batch.impact_location, batch.pitch_speed, batch.bat_angular_speed,
-                           out.exit_speed, out.bat_angular_speed_after, out.cor,
-                           self.ball.model.cor, out.recoil_factor)
-        diag = {k: np.asarray(v).reshape(r.shape) for k, v in out.diagnostics.items()}
-        return m.reshape(r.shape), diag
+                           out.exit_speed, out.bat_angular_speed_after, out.cor, ball.cor,
+                           out.recoil_factor)
+        diag = {k: np.asarray(v).reshape(self.shape) for k, v in out.diagnostics.items()}
+        return m.reshape(self.shape), diag
+
+
+# A protocol run as steps: a generator that yields the requests it needs solved together and
+# is sent back their results, in order, until it returns its value.
+Solved = tuple[ImpactMetrics, dict[str, np.ndarray]]
+Steps = Generator[list[Request], list[Solved], Any]
+
+
+def drive(runs: list[Steps], engine: Engine) -> list[Any]:
+    """Advance every run in lockstep, solving all the requests of one step in a single engine
+    call (:meth:`Engine.solve_many`): a comparison's bats and protocols share their sweeps,
+    refinements and final impacts. Returns each run's value, in order."""
+    values: list[Any] = [None] * len(runs)
+    pending: dict[int, list[Request]] = {}
+    for i, run in enumerate(runs):
+        try:
+            pending[i] = next(run)
+        except StopIteration as stop:
+            values[i] = stop.value
+    while pending:
+        order = [(i, req) for i, reqs in pending.items() for req in reqs]
+        outcomes = engine.solve_many([req.job() for _, req in order])
+        answers: dict[int, list[Solved]] = {i: [] for i in pending}
+        for (i, req), out in zip(order, outcomes, strict=True):
+            answers[i].append(req.finish(out))
+        for i in list(pending):
+            try:
+                pending[i] = runs[i].send(answers[i])
+            except StopIteration as stop:
+                values[i] = stop.value
+                del pending[i]
+    return values
 
 
 def check_applicable(protocol: ProtocolSpec, bat: BatModel) -> None:
@@ -144,6 +198,20 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
     metric per condition, the aggregated metric, its margin and verdict, and the engine's and
     the bat's diagnostics. Raises :class:`ProtocolError` when the protocol does not fit the bat.
     """
+    return run_protocols([(built, protocol, ball)], engine, created)[0]
+
+
+def run_protocols(jobs: list[tuple[BuiltBat, ProtocolSpec, BallSpec]], engine: Engine,
+                  created: str | None = None) -> list[RunResult]:
+    """:func:`run_protocol` for several (bat, protocol, ball) at once, their engine batches
+    solved together (:func:`drive`); the results are the same as one at a time."""
+    stamp = created or _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    return drive([protocol_steps(b, p, ball, engine, stamp) for b, p, ball in jobs], engine)
+
+
+def protocol_steps(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine: Engine,
+                   created: str) -> Steps:
+    """The steps of :func:`run_protocol` (a generator for :func:`drive`)."""
     p, bat = protocol, built.model
     check_applicable(p, bat)
     conds = conditions_from_spec(p.conditions, bat.length, p.pivot)
@@ -151,15 +219,16 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
     mp = mass_properties(built, p.pivot)
     rule = IMPACT_RULES[p.impact_location.rule]
     metric = METRICS[p.metric]
-    search = locate(bench, conds, p.impact_location, metric, rule.needs_metric_peak, mp.cop)
+    search: Search = yield from locate_steps(bench, conds, p.impact_location, metric,
+                                             rule.needs_metric_peak, mp.cop)
     choice = rule.choose(search.peaks)
     _check_on_bat(choice, rule.name, search.peaks.tip)
-    final, diag = bench.solve(conds, choice.location[:, None])
-    values = metric.value(final)[:, 0]
     aggregate = AGGREGATES[p.aggregate]
+    (final, diag), barrel = yield from _final_steps(bench, conds, choice.location, metric,
+                                                     aggregate, p.limit)
+    values = metric.value(final)[:, 0]
     value = aggregate.combine(values)
     margin, verdict = decide(value, p.limit)
-    barrel = barrel_range(bench, conds, choice.location, metric, aggregate, p.limit)
     inputs = [InputFile("bat", built.spec.name, built.spec.path, built.spec.sha256),
               InputFile("protocol", p.id, p.path, p.sha256),
               InputFile("ball", ball.name, ball.path, ball.sha256)]
@@ -172,10 +241,23 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
         engine_settings=engine.settings(bat), support=p.support, mass_properties=mp,
         conditions=_condition_results(conds, choice, search, final, diag, values, mp,
                                       ball.model.mass),
-        inputs=inputs, batcert_version=__version__,
-        created=created or _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        inputs=inputs, batcert_version=__version__, created=created,
         warnings=_warnings(p, conds, choice, engine) + _barrel_warning(barrel, metric.display),
         extras=bat_dynamics(built, p.pivot), barrel=barrel)
+
+
+def _final_steps(bench: Bench, conds: list[Condition], locations: np.ndarray, metric,
+                 aggregate, limit: LimitSpec | None):
+    """The impacts at the chosen points, and in the same step the barrel's variants (hollow
+    bats): ``((metrics, diagnostics), BarrelRange or None)``."""
+    ranged = barrel_range_steps(bench, conds, locations, metric, aggregate, limit)
+    variants = next(ranged)  # the variants' requests (possibly none)
+    answers = yield [bench.request(conds, locations[:, None])] + variants
+    try:
+        ranged.send(answers[1:])
+    except StopIteration as stop:
+        return answers[0], stop.value
+    raise RuntimeError("the barrel range asked for more than one step")
 
 
 def _barrel_warning(barrel: BarrelRange | None, metric: str) -> list[str]:

@@ -46,6 +46,7 @@ point's speed after impact), the rigid-body equivalent of what the vibrating bat
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from collections.abc import Callable
 
 import numpy as np
@@ -68,6 +69,7 @@ SOLID_STEP, HOLLOW_STEP = 20e-6, 10e-6  # [s]
 DEFAULT_SHELL_FREQUENCY = 12_000.0  # [Hz]
 BALL_LOSS = ("compression", "relative-speed")
 _PIVOT_CLEARANCE = 1e-3  # an impact closer than this to the pivot is refused [m]
+_BEAM_CACHE: OrderedDict[tuple, tuple] = OrderedDict()  # see FlexibleEngine._beam_at
 
 
 def rigid_mode_velocities(modes: Modes, pivot: float) -> np.ndarray:
@@ -207,17 +209,13 @@ class FlexibleEngine:
         if not 0 <= zeta < 1:
             raise ValueError(f"loss factor {bat.material.loss_factor} out of range [0, 2)")
         points, weights, half = self._patch(bat, ball, z, batch.relative_speed)
-        phi = (modes.at(points.ravel()).reshape(*points.shape, -1) * weights[..., None]).sum(1)
+        phi, residual = self._beam_at(bat, modes, points, weights)
         nr = modes.n_rigid
         gain, omega = phi[:, nr:], np.broadcast_to(modes.omega[nr:], (z.size, phi.shape[1] - nr))
         rigid_mass = 1.0 / (phi[:, :nr] ** 2).sum(1)
         extras = {"modes": modes, "phi": phi, "n_bending": omega.shape[1], "n_shell": 0,
                   "beam_rigid_mass": rigid_mass, "residual_omega": 0.0,
                   "shell_static": np.zeros(z.size)}
-        residual = np.zeros(z.size)
-        if self.residual:
-            from batcert.physics.residual import residual_compliance
-            residual = residual_compliance(bat, modes, points, weights)
         shell = self._shell(bat, points, weights, half, extras)
         if shell is not None:
             gain = np.concatenate([gain, shell.gain], axis=1)
@@ -235,6 +233,26 @@ class FlexibleEngine:
                               ball_mass=np.full(z.size, ball.mass),
                               shell_columns=shell_cols if shell is not None else None)
         return system, extras
+
+    def _beam_at(self, bat: BatModel, modes: Modes, points: np.ndarray, weights: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray]:
+        """The modes' shapes averaged over each patch, (p, modes), and the truncated modes'
+        residual compliance there, (p,) (zero without ``residual``); memoised on the modes and
+        the patches, which recur (a barrel's variants, the same points in several runs)."""
+        key = (id(modes), self.residual, points.shape, points.tobytes(), weights.tobytes())
+        hit = _BEAM_CACHE.get(key)
+        if hit is not None and hit[0] is modes:
+            _BEAM_CACHE.move_to_end(key)
+            return hit[1], hit[2]
+        phi = (modes.at(points.ravel()).reshape(*points.shape, -1) * weights[..., None]).sum(1)
+        residual = np.zeros(points.shape[0])
+        if self.residual:
+            from batcert.physics.residual import residual_compliance
+            residual = residual_compliance(bat, modes, points, weights)
+        _BEAM_CACHE[key] = (modes, phi, residual)
+        while len(_BEAM_CACHE) > 256:
+            _BEAM_CACHE.popitem(last=False)
+        return phi, residual
 
     def _shell(self, bat: BatModel, points, weights, half, extras: dict):
         """A hollow bat's wall at each impact (module notes), or None for a solid bat."""
@@ -320,8 +338,13 @@ class FlexibleEngine:
         relative = np.concatenate([j[3].relative_speed for j in jobs])
         restitution: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
         if self.ball_loss == "compression":
-            laws = [contact.compression_restitution(b) for b in balls]
-            owner = np.repeat(np.arange(len(jobs)), sizes)
+            distinct: list[BallModel] = []  # a run's jobs usually share one ball
+            for b in balls:
+                if not any(b == d for d in distinct):
+                    distinct.append(b)
+            laws = [contact.compression_restitution(b) for b in distinct]
+            owner = np.repeat([next(k for k, d in enumerate(distinct) if b == d) for b in balls],
+                              sizes)
 
             def by_ball(u_top, rows):
                 beta = np.empty(rows.size)

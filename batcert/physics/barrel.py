@@ -293,7 +293,8 @@ def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray
     """
     g = _w_load(barrel.shell, points, weights)  # (p, 3N)
     angles, which = np.unique(half_angle, return_inverse=True)  # often one patch size
-    c = np.stack([circumferential_factor(n, angles) for n in barrel.orders])[:, which.ravel()]
+    c = circumferential_factor(np.asarray(barrel.orders)[:, None],
+                               angles[None, :])[:, which.ravel()]  # (orders, p)
     static = barrel.green_scale * (c**2 * _patch_flexibility(barrel.green, g)).sum(axis=0)
     order_row = {n: i for i, n in enumerate(barrel.orders)}
     factor = c[[order_row[n] for n in barrel.mode_orders]].T  # (p, m)
@@ -303,13 +304,31 @@ def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray
                           barrel.mode_orders)
 
 
+_PATCH_CACHE: OrderedDict[tuple, tuple[np.ndarray, np.ndarray]] = OrderedDict()
+
+
 def _patch_flexibility(green: np.ndarray, g: np.ndarray) -> np.ndarray:
     """``q[n, i] = g_i^T G_n g_i`` for every order and patch, (orders, p).
 
     A patch loads only the few nodes it covers, a contiguous band of the W space, so each patch
     reads a band of every order's flexibility (a view, no copy); patches with the same band are
-    done together.
+    done together. Memoised on the wall and the loads (LRU): a scaled wall (calibration, the
+    uncertainty range) shares its nominal flexibility, and the runner asks again for the same
+    points.
     """
+    key = (id(green), g.shape, hashlib.sha1(g.tobytes()).digest())
+    hit = _PATCH_CACHE.get(key)
+    if hit is not None and hit[0] is green:
+        _PATCH_CACHE.move_to_end(key)
+        return hit[1]
+    q = _patch_flexibility_of(green, g)
+    _PATCH_CACHE[key] = (green, q)
+    while len(_PATCH_CACHE) > 64:
+        _PATCH_CACHE.popitem(last=False)
+    return q
+
+
+def _patch_flexibility_of(green: np.ndarray, g: np.ndarray) -> np.ndarray:
     nz = g != 0
     width = g.shape[1]
     lo = np.argmax(nz, axis=1)

@@ -10,6 +10,7 @@ builds the :class:`LinearSystem` of each impact and reads the :class:`Separation
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any
 
@@ -195,6 +196,26 @@ class _State:
                    share=zeros.copy(), rows=np.arange(n))
 
 
+_EXP_CACHE: OrderedDict[tuple, tuple[np.ndarray, ...]] = OrderedDict()
+
+
+def _exponentials(lam: np.ndarray, h: float) -> tuple[np.ndarray, ...]:
+    """``e^(lam h)``, ``e^(lam h / 2)``, ``phi_1..3(lam h)`` and ``h/2 phi_1(lam h / 2)`` of
+    one block's eigenvalues; memoised (a bat's modes recur in every batch of a run)."""
+    key = (lam.shape, float(h), lam.tobytes())
+    hit = _EXP_CACHE.get(key)
+    if hit is not None:
+        _EXP_CACHE.move_to_end(key)
+        return hit
+    vals = (np.exp(lam * h), np.exp(lam * h / 2), *phi_functions(lam * h),
+            0.5 * h * phi_functions(lam * h / 2)[0])
+    if lam.shape[0] == 1:  # only single rows (a block's shared row) are worth keeping
+        _EXP_CACHE[key] = vals
+        while len(_EXP_CACHE) > 128:
+            _EXP_CACHE.popitem(last=False)
+    return vals
+
+
 def _coefficients(system: LinearSystem, h: float, k1, alpha, beta) -> _Coefficients:
     """The step constants of every impact (see :func:`march`)."""
     om, g = system.omega, system.gain
@@ -206,10 +227,8 @@ def _coefficients(system: LinearSystem, h: float, k1, alpha, beta) -> _Coefficie
     # that share them (one bat), broadcast to its rows
     e1, e2, p1, p2, p3, q_half = (np.empty((n, k_modes), complex) for _ in range(6))
     for a, b in system.blocks or ((0, n),):
-        same = bool(np.all(om[a:b] == om[a:a + 1]))
-        lb = lam[a:a + 1] if same else lam[a:b]
-        vals = (np.exp(lb * h), np.exp(lb * h / 2), *phi_functions(lb * h),
-                0.5 * h * phi_functions(lb * h / 2)[0])
+        same = bool(np.all(om[a:b] == om[a:a + 1])) and bool(np.all(zeta[a:b] == zeta[a]))
+        vals = _exponentials(lam[a:a + 1], h) if same else _exponentials(lam[a:b], h)
         for target, v in zip((e1, e2, p1, p2, p3, q_half), vals, strict=True):
             target[a:b] = v
     c_y = g / om_d  # contact-point displacement y = sum c_y Im(Z)

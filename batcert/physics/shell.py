@@ -364,10 +364,11 @@ def normal_reader(shell: ShellOfRevolution, n: int, z: np.ndarray):
     return cols, h
 
 
-def circumferential_factor(n: int, half_angle) -> np.ndarray:
+def circumferential_factor(n, half_angle) -> np.ndarray:
     """``c_n = int w(theta) cos(n theta) dtheta`` for a normal load spread around the
     circumference with the semicircular (Hertz-like) weight ``w`` of half-angle ``beta``
-    [rad], normalised to unit resultant: ``2 J_1(n beta) / (n beta)`` (1 at ``n = 0``)."""
+    [rad], normalised to unit resultant: ``2 J_1(n beta) / (n beta)`` (1 at ``n = 0``).
+    ``n`` and ``half_angle`` broadcast against each other."""
     from scipy.special import j1
 
     x = n * np.asarray(half_angle, dtype=float)

@@ -77,14 +77,26 @@ def load_yaml(path: str | Path) -> Located:
     return load_yaml_text(text, file)
 
 
+_FAST_LOADER = getattr(yaml, "CSafeLoader", None)  # libyaml: ~10x faster to compose
+
+
+def _compose(text: str, loader_class) -> yaml.Node | None:
+    loader = loader_class(text)
+    try:
+        return loader.get_single_node()
+    finally:
+        loader.dispose()
+
+
 def load_yaml_text(text: str, file: str) -> Located:
     errors = Collector(file)
     try:
-        loader = yaml.SafeLoader(text)
         try:
-            node = loader.get_single_node()
-        finally:
-            loader.dispose()
+            node = _compose(text, _FAST_LOADER or yaml.SafeLoader)
+        except yaml.YAMLError:
+            # the pure-Python parser's messages are the documented ones (and the same
+            # everywhere): parse again with it to report the problem
+            node = _compose(text, yaml.SafeLoader)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark else None

@@ -61,12 +61,12 @@ from batcert.physics.modes import Modes
 SUPPORTS = ("pinned", "free")
 # Accuracy-driven defaults: every exit speed of the shipped bats under the shipped protocols
 # within 0.01 % of the converged engine (48 modes, 2.5 us, shell modes to 16 kHz), half the
-# 0.02 % an exit speed needs (measured: solid 4.7e-5 at 20 us, hollow 2.1e-5 at 10 us;
-# tests/engines/test_convergence.py, benchmarks/bench_accuracy.py). A hollow barrel's contact
-# force has sharper kinks, hence its shorter step.
+# 0.02 % an exit speed needs (measured: solid 4.7e-5 at 20 us, hollow 3.0e-5 at 10 us with
+# shell modes to 10 kHz; tests/engines/test_convergence.py). A hollow barrel's contact force
+# has sharper kinks, hence its shorter step; shell modes to 8 kHz would leave 2e-4.
 DEFAULT_MODES = 16
 SOLID_STEP, HOLLOW_STEP = 20e-6, 10e-6  # [s]
-DEFAULT_SHELL_FREQUENCY = 12_000.0  # [Hz]
+DEFAULT_SHELL_FREQUENCY = 10_000.0  # [Hz]
 BALL_LOSS = ("compression", "relative-speed")
 _PIVOT_CLEARANCE = 1e-3  # an impact closer than this to the pivot is refused [m]
 _BEAM_CACHE: OrderedDict[tuple, tuple] = OrderedDict()  # see FlexibleEngine._beam_at
@@ -244,11 +244,13 @@ class FlexibleEngine:
         if hit is not None and hit[0] is modes:
             _BEAM_CACHE.move_to_end(key)
             return hit[1], hit[2]
-        phi = (modes.at(points.ravel()).reshape(*points.shape, -1) * weights[..., None]).sum(1)
+        from batcert.physics.residual import patch_reader, residual_compliance
+
+        reader = patch_reader(modes.z, points, weights)  # (p, nodes), as Modes.at reads
+        phi = reader @ modes.shapes.T
         residual = np.zeros(points.shape[0])
         if self.residual:
-            from batcert.physics.residual import residual_compliance
-            residual = residual_compliance(bat, modes, points, weights)
+            residual = residual_compliance(bat, modes, points, weights, reader=reader)
         _BEAM_CACHE[key] = (modes, phi, residual)
         while len(_BEAM_CACHE) > 256:
             _BEAM_CACHE.popitem(last=False)

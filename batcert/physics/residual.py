@@ -16,36 +16,25 @@ from batcert.physics.beam import assemble, check_support, free_dofs, rigid_modes
 from batcert.physics.modes import Modes
 
 
-def _point_loads(z_nodes: np.ndarray, z_points) -> np.ndarray:
-    """Unit transverse loads at ``z_points`` shared linearly between the two nearest nodes.
-
-    The same interpolation as :meth:`Modes.at`, so ``phi @ f = modes.at(z)``. Shape (ndof, p).
-    """
-    zp = np.atleast_1d(np.asarray(z_points, dtype=float))
+def patch_reader(z_nodes: np.ndarray, z_points: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """How each patch reads (and loads) the beam's transverse displacement: ``a[i, j]``, the
+    weight of node ``j`` for patch ``i``, each sample point ``z_points[i, k]`` (weight
+    ``weights[i, k]``) shared linearly between its two nearest nodes, as :meth:`Modes.at`
+    interpolates. A patch's mode shapes are ``a @ shapes.T``; its unit load on the nodes is
+    ``a``. Shape (p, n_nodes)."""
+    zp = np.asarray(z_points, dtype=float)
     i = np.clip(np.searchsorted(z_nodes, zp, side="right") - 1, 0, z_nodes.size - 2)
     t = np.clip((zp - z_nodes[i]) / (z_nodes[i + 1] - z_nodes[i]), 0.0, 1.0)
-    f = np.zeros((2 * z_nodes.size, zp.size))
-    cols = np.arange(zp.size)
-    f[2 * i, cols] += 1.0 - t
-    f[2 * i + 2, cols] += t
-    return f
+    w = np.asarray(weights, dtype=float)
+    rows = np.broadcast_to(np.arange(zp.shape[0])[:, None], zp.shape)
+    a = np.zeros((zp.shape[0], z_nodes.size))
+    np.add.at(a, (rows, i), (1.0 - t) * w)
+    np.add.at(a, (rows, i + 1), t * w)
+    return a
 
 
-def _distributed_loads(z_nodes: np.ndarray, z_points: np.ndarray, weights: np.ndarray) -> np.ndarray:
-    """Unit resultant loads spread over ``z_points`` (p, K) with ``weights`` (p, K), each sample
-    shared linearly between its two nearest nodes (as :func:`_point_loads`). Shape (ndof, p)."""
-    zp = z_points.ravel()
-    i = np.clip(np.searchsorted(z_nodes, zp, side="right") - 1, 0, z_nodes.size - 2)
-    t = np.clip((zp - z_nodes[i]) / (z_nodes[i + 1] - z_nodes[i]), 0.0, 1.0)
-    w = weights.ravel()
-    cols = np.repeat(np.arange(z_points.shape[0]), z_points.shape[1])
-    f = np.zeros((2 * z_nodes.size, z_points.shape[0]))
-    np.add.at(f, (2 * i, cols), (1.0 - t) * w)
-    np.add.at(f, (2 * i + 2, cols), t * w)
-    return f
-
-
-def residual_compliance(bat: BatModel, modes: Modes, z_points, weights=None) -> np.ndarray:
+def residual_compliance(bat: BatModel, modes: Modes, z_points, weights=None,
+                        reader: np.ndarray | None = None) -> np.ndarray:
     """Static compliance at ``z_points`` of the bending modes that ``modes`` left out.
 
     The elastic (inertia-relief) flexibility of the FE beam, ``G = sum over all bending modes of
@@ -55,7 +44,8 @@ def residual_compliance(bat: BatModel, modes: Modes, z_points, weights=None) -> 
     removed from the displacement (Craig & Kurdila, *Fundamentals of Structural Dynamics*, 2006,
     Sec. 11.3, residual flexibility). The kept modes' ``sum phi_j(z)^2 / omega_j^2`` is subtracted;
     what remains is the quasi-static flexibility of the truncated modes, to be put in series with
-    the ball contact.
+    the ball contact. The flexibility between the nodes' transverse displacements is formed once
+    per modes, so each patch costs a quadratic form in its nodal weights.
 
     Parameters
     ----------
@@ -70,6 +60,8 @@ def residual_compliance(bat: BatModel, modes: Modes, z_points, weights=None) -> 
         Shape (p, K), each row summing to 1: the load of impact ``i`` is spread over
         ``z_points[i]`` with these weights (a contact patch); the compliance is then the
         work-conjugate one, ``f^T G f`` for the unit resultant ``f``.
+    reader : numpy.ndarray, optional
+        :func:`patch_reader` of these points and weights, if already at hand.
 
     Returns
     -------
@@ -77,33 +69,25 @@ def residual_compliance(bat: BatModel, modes: Modes, z_points, weights=None) -> 
         Residual compliance [m/N], shape (p,), >= 0.
     """
     check_support(bat, modes.support, modes.pivot)
-    zp = np.asarray(z_points, dtype=float)
-    if weights is None:
-        zp, w = zp.reshape(-1, 1), np.ones((zp.size, 1))
-    else:
-        w = np.asarray(weights, dtype=float)
+    if reader is None:
+        zp = np.asarray(z_points, dtype=float)
+        if weights is None:
+            zp, w = zp.reshape(-1, 1), np.ones((zp.size, 1))
+        else:
+            w = np.asarray(weights, dtype=float)
+        reader = patch_reader(modes.z, zp, w)
     flex = _flexibility(bat, modes)
-    n_points, n_samples = zp.shape
-    f = _distributed_loads(flex.z, zp, w)[flex.keep]
-    f_eq = f - flex.m @ (flex.rigid @ (flex.rigid.T @ f))
-    x = np.zeros_like(f_eq)
-    x[flex.solve] = flex.flexibility @ f_eq[flex.solve]
-    x -= flex.rigid @ (flex.rigid.T @ (flex.m @ x))
-    full = np.einsum("dp,dp->p", f, x)
+    full = np.einsum("pi,pi->p", reader @ flex.nodal, reader)
     elastic = slice(modes.n_rigid, None)
-    phi = (modes.at(zp.ravel()).reshape(n_points, n_samples, -1) * w[..., None]).sum(axis=1)
-    kept = (phi[:, elastic] ** 2 / modes.omega[elastic] ** 2).sum(axis=1)
+    phi = reader @ modes.shapes[elastic].T
+    kept = (phi**2 / modes.omega[elastic] ** 2).sum(axis=1)
     return np.clip(full - kept, 0.0, None)
 
 
 @dataclass(frozen=True)
 class _Flexibility:
     z: np.ndarray  # mesh nodes [m]
-    keep: np.ndarray  # retained DOFs
-    rigid: np.ndarray  # rigid modes on the retained DOFs
-    m: np.ndarray  # mass matrix on the retained DOFs
-    solve: np.ndarray  # DOFs solved for (determinate supports removed)
-    flexibility: np.ndarray  # inverse of the stiffness on `solve` (dense: a few hundred DOFs)
+    nodal: np.ndarray  # elastic flexibility between the nodes' transverse displacements, (N, N)
 
 
 _FLEX_CACHE: dict = {}
@@ -123,8 +107,21 @@ def _flexibility(bat: BatModel, modes: Modes) -> _Flexibility:
     w_end = [0, keep.size - 2] if modes.support == "free" else (
         [keep.size - 2] if modes.pivot < 0.5 * (fe.z[0] + fe.z[-1]) else [0])
     solve = np.delete(np.arange(keep.size), w_end)  # (np.setdiff1d imports numpy.ma: 10 ms)
-    flexibility = np.linalg.inv(k[np.ix_(solve, solve)])
-    flex = _Flexibility(fe.z, keep, rigid, m, solve, 0.5 * (flexibility + flexibility.T))
+    # x = X f for a load f on the retained DOFs: balance f against the rigid modes' inertia,
+    # solve on the determinate supports, remove the rigid part of the answer
+    relief = np.eye(keep.size) - m @ rigid @ rigid.T
+    inner = np.zeros((keep.size, keep.size))
+    inner[np.ix_(solve, solve)] = np.linalg.inv(k[np.ix_(solve, solve)])
+    x = relief.T @ inner @ relief
+    # the transverse displacement DOFs (2 j) among the retained ones; a node whose w is held
+    # (the pin) has no flexibility
+    position = np.full(fe.z.size * 2, -1)
+    position[keep] = np.arange(keep.size)
+    w_rows = position[0::2]
+    nodal = np.zeros((fe.z.size, fe.z.size))
+    held = w_rows < 0
+    nodal[np.ix_(~held, ~held)] = x[np.ix_(w_rows[~held], w_rows[~held])]
+    flex = _Flexibility(fe.z, 0.5 * (nodal + nodal.T))
     _FLEX_CACHE[id(modes)] = (modes, flex)
     while len(_FLEX_CACHE) > 32:
         _FLEX_CACHE.pop(next(iter(_FLEX_CACHE)))

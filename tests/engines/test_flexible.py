@@ -162,6 +162,13 @@ def test_registered_and_settings():
     assert s["n_modes"] == 12 and s["time_step"] == 5e-6 and s["engine"] == "flexible"
 
 
+def test_engine_and_barrel_share_the_shell_cut():
+    # one cut: the engine's default and the barrel module's (hoop frequency, summaries) agree
+    from batcert.engines.flexible import DEFAULT_SHELL_FREQUENCY
+    from batcert.physics import barrel
+    assert FlexibleEngine().shell_max_frequency == DEFAULT_SHELL_FREQUENCY == barrel.MAX_FREQUENCY
+
+
 def test_rigid_modes_only_reproduce_the_rigid_closed_form(r161):
     # Modes holding only the rigid rotation about the pivot: the engine must reduce to Smith 2001
     # Eqs. 1 and 3 exactly, up to the step's truncation error of the contact pulse: at the

@@ -1,14 +1,22 @@
-"""Time the flexible impact engine: sweeps, the `proposed` protocol's load, and the speed ratio
-against the solve_ivp reference integration kept in tests/physics/test_flexible.py.
+"""Time the flexible impact engine through its API, and its accuracy against its converged
+limit. Prints figures; asserts nothing.
 
-Run from the repository root:  python benchmarks/bench_engine.py [--quick]
-Prints figures only; nothing is asserted. Modes (and the residual compliance) are cached before
-timing, as in a protocol run. Times are the minimum and the median of repeated calls (the
-minimum is the machine's capability, the median what a loaded machine gives).
+    python benchmarks/bench_engine.py [--quick] [--json FILE]
+
+Sections: sweeps of one bat; a hollow bat against a solid one of the same profile; the 2001
+study's replay (every protocol of both bats, engine only: the bats' modes and barrels are
+computed beforehand, the engine's own caches emptied); large batches (impacts per second of one
+core); every shipped result against the converged engine; and the speed ratio to a solve_ivp
+integration of the same equations (tests/engines/test_flexible.py). Times are the minimum and
+the median of repeated calls (the minimum is the machine's capability, the median what a loaded
+machine gives). Targets (issue 9, 2-core machine): the study's engine time <= 0.1 s, >= 50,000
+impacts per second, every result within 0.02 % of the converged engine.
 """
 
 from __future__ import annotations
 
+import argparse
+import json
 import sys
 import time
 from pathlib import Path
@@ -16,29 +24,42 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "tests" / "engines"))
 
 from r161 import r161_bat  # noqa: E402
 from test_flexible import BALL, BARREL_D, hollow_bat, reference_impact  # noqa: E402
 
+import batcert.engines.flexible as flexible_module  # noqa: E402
+import batcert.physics.barrel as barrel_module  # noqa: E402
+import batcert.physics.march as march_module  # noqa: E402
+from batcert.commands.inputs import load_bat_any, load_protocol_any  # noqa: E402
 from batcert.engines import ImpactBatch  # noqa: E402
 from batcert.engines.flexible import FlexibleEngine  # noqa: E402
 from batcert.model.geometry import build_geometry  # noqa: E402
-from batcert.physics.barrel import cached_barrel_modes, clear_barrel_cache  # noqa: E402
-from batcert.physics.modes import cached_modes, clear_mode_cache  # noqa: E402
+from batcert.physics.modes import cached_modes  # noqa: E402
+from batcert.runner.runner import run_protocols  # noqa: E402
 from batcert.specs.materials import LIBRARY  # noqa: E402
 
 PIVOT = 0.15  # the study's pivot [m]
 ASH = LIBRARY["ash-bat"][0]
 REPEAT = 15
+SHIPPED_BATS = ["ash-34", "r161", "aluminium-34", "bbcor-alloy-34"]
+SHIPPED_PROTOCOLS = ["astm-bpf", "ncaa-bbcor", "ncaa-besr", "proposed", "stationary-ball"]
+STUDY = ["smith2001-bpf-cop.yaml", "smith2001-besr-sweet-spot.yaml",
+         "smith2001-bpf-sweet-spot.yaml", "proposed", "smith2001-besr-matched.yaml"]
+figures: dict[str, float] = {}
 
 
-def timed(fn, repeat=REPEAT):
-    fn()  # warm caches (modes, residual compliance)
+def timed(fn, repeat=REPEAT, before=None):
+    """Minimum and median wall time [ms] of ``fn`` (``before`` runs untimed before each)."""
+    if before:
+        before()
+    fn()  # warm
     times = []
     for _ in range(repeat):
+        if before:
+            before()
         t0 = time.perf_counter()
         fn()
         times.append(time.perf_counter() - t0)
@@ -62,6 +83,11 @@ def timed_pair(fa, fb, repeat=3 * REPEAT):
             float(np.median(b / a)))
 
 
+def report(key: str, text: str, value: float) -> None:
+    figures[key] = value
+    print(text)
+
+
 def proposed_batch(z):
     """The `proposed` protocol's three conditions at 60 m/s relative speed at every location:
     stationary bat, stationary ball, 31 m/s pitch plus the swing making up the rest."""
@@ -71,86 +97,133 @@ def proposed_batch(z):
     return ImpactBatch(np.tile(r, 3), vp, w1)
 
 
-def main(quick: bool = False) -> None:
+def clear_engine_caches() -> None:
+    """The caches a fresh process starts without (the bats' modes and barrels are kept)."""
+    march_module._EXP_CACHE.clear()
+    flexible_module._BEAM_CACHE.clear()
+    barrel_module._PATCH_CACHE.clear()
+
+
+def sweeps(engine: FlexibleEngine) -> None:
     bat = r161_bat()
-    engine = FlexibleEngine()
-    # the protocols' default search window, 3-30 cm from the tip
     z = np.linspace(bat.length - 0.30, bat.length - 0.03, 71)
-    print(f"flexible engine: {engine.settings()['integrator']}; n_modes={engine.n_modes}, "
-          f"time_step={engine.time_step * 1e6:.0f} us")
+    lo, med = timed(lambda: engine.solve(bat, BALL, PIVOT, ImpactBatch(z - PIVOT, -60.0, 0.0)))
+    report("sweep_71_ms", f"R161, 71-location sweep, one condition:      {lo:6.1f} ms "
+           f"(median {med:.1f})", lo)
+    lo, med = timed(lambda: engine.solve(bat, BALL, PIVOT, proposed_batch(z)))
+    report("sweep_3x71_ms", f"R161, 3 conditions x 71 locations:          {lo:6.1f} ms "
+           f"(median {med:.1f})", lo)
 
-    one = ImpactBatch(z - PIVOT, -60.0, 0.0)
-    lo, med = timed(lambda: engine.solve(bat, BALL, PIVOT, one))
-    print(f"R161, 71-location sweep, one condition:        {lo:6.1f} ms (median {med:.1f})  "
-          "[target 20 ms]")
-    whole = ImpactBatch(np.linspace(0.40, 0.82, 71) - PIVOT, -60.0, 0.0)
-    lo_w, med_w = timed(lambda: engine.solve(bat, BALL, PIVOT, whole))
-    longest = engine.solve(bat, BALL, PIVOT, whole).diagnostics["contact_time"].max() * 1e3
-    print(f"  same, 40-82 cm from the knob:                {lo_w:6.1f} ms (median {med_w:.1f}); "
-          f"longest contact {longest:.1f} ms")
 
-    three = proposed_batch(z)
-    refine = [proposed_batch(np.linspace(0.66, 0.72, 7)),  # ~2 small batches, as the runner
-              proposed_batch(np.linspace(0.68, 0.70, 7))]
-
-    def protocol_load():
-        engine.solve(bat, BALL, PIVOT, three)
-        for b in refine:
-            engine.solve(bat, BALL, PIVOT, b)
-
-    lo3, med3 = timed(lambda: engine.solve(bat, BALL, PIVOT, three))
-    lo_all, med_all = timed(protocol_load)
-    print(f"R161, 3 conditions x 71 locations:            {lo3:6.1f} ms (median {med3:.1f})")
-    print(f"  + 2 refinement batches (3 x 7 each):        {lo_all:6.1f} ms (median {med_all:.1f})  "
-          "[target < 100 ms]")
-
-    # hollow against solid: the same 34 in profile, as a 2.5 mm 7050 shell and as solid ash,
-    # the same batch (the protocol load above on the hollow bat's window)
+def hollow_against_solid(engine: FlexibleEngine) -> None:
     hollow = hollow_bat(2.5e-3)
     solid = build_geometry("test-solid", "solid", 0.864, [0.0, 0.02, 0.30, 0.55, 0.864],
                            [0.040, 0.024, 0.024, BARREL_D, BARREL_D], ASH)
-    zh = np.linspace(hollow.length - 0.30, hollow.length - 0.03, 71)
-    three_h = proposed_batch(zh)
+    batch = proposed_batch(np.linspace(hollow.length - 0.30, hollow.length - 0.03, 71))
     (lo_s, med_s), (lo_h, med_h), ratio = timed_pair(
-        lambda: engine.solve(solid, BALL, PIVOT, three_h),
-        lambda: engine.solve(hollow, BALL, PIVOT, three_h))
-    shell_modes = cached_barrel_modes(hollow).omega.size
-    print(f"34 in solid, 3 conditions x 71 locations:     {lo_s:6.1f} ms (median {med_s:.1f})")
-    print(f"  same profile hollow, 2.5 mm wall:           {lo_h:6.1f} ms (median {med_h:.1f}); "
-          f"{shell_modes} shell modes; hollow / solid = {ratio:.2f} (median of alternated "
-          "pairs)  [target <= 1.5]")
-    clear_barrel_cache()
+        lambda: engine.solve(solid, BALL, PIVOT, batch),
+        lambda: engine.solve(hollow, BALL, PIVOT, batch))
+    shell_modes = barrel_module.cached_barrel_modes(hollow).omega.size
+    print(f"34 in solid, 3 conditions x 71 locations:   {lo_s:6.1f} ms (median {med_s:.1f})")
+    report("hollow_over_solid", f"  same profile hollow, 2.5 mm wall:         {lo_h:6.1f} ms "
+           f"(median {med_h:.1f}); {shell_modes} shell modes; hollow / solid = {ratio:.2f} "
+           "(median of alternated pairs; the default steps differ)", ratio)
+    same_step = FlexibleEngine(time_step=flexible_module.HOLLOW_STEP)
+    *_, ratio = timed_pair(lambda: same_step.solve(solid, BALL, PIVOT, batch),
+                           lambda: same_step.solve(hollow, BALL, PIVOT, batch))
+    report("hollow_over_solid_same_step", f"  the barrel's own cost (both at the hollow step): "
+           f"hollow / solid = {ratio:.2f}  [target <= 1.5]", ratio)
+    barrel_module.clear_barrel_cache()
     t0 = time.perf_counter()
-    cached_barrel_modes(hollow)
-    print(f"  barrel shell (modes, static flexibility), once per bat: "
-          f"{(time.perf_counter() - t0) * 1e3:6.0f} ms")
-    fine = FlexibleEngine(time_step=5e-6)
-    lo5, med5 = timed(lambda: fine.solve(bat, BALL, PIVOT, one))
-    print(f"R161, 71-location sweep at a 5 us step:       {lo5:6.1f} ms (median {med5:.1f})")
+    barrel_module.cached_barrel_modes(hollow)
+    report("barrel_setup_ms", "  barrel shell (modes, static flexibility), once per bat: "
+           f"{(time.perf_counter() - t0) * 1e3:6.0f} ms", (time.perf_counter() - t0) * 1e3)
 
-    clear_mode_cache()
-    t0 = time.perf_counter()
-    engine.solve(bat, BALL, PIVOT, one)
-    cold = (time.perf_counter() - t0) * 1e3
-    print(f"R161, 71-location sweep, modes not cached:    {cold:6.1f} ms")
 
-    # speed ratio against the reference integration (one impact at a time, solve_ivp DOP853)
-    sweep = z if not quick else z[::7]
+def study(engine: FlexibleEngine) -> None:
+    bats = [load_bat_any(b).built for b in ("ash-34", "aluminium-34")]
+    protocols = [load_protocol_any(str(ROOT / "protocols" / "studies" / p) if p.endswith(".yaml")
+                                   else p) for p in STUDY]
+    jobs = [(b, p.protocol, p.ball) for b in bats for p in protocols]
+    run_protocols(jobs, engine)  # the bats' modes and barrels, computed once per bat
+    lo, med = timed(lambda: run_protocols(jobs, engine), repeat=5, before=clear_engine_caches)
+    report("study_engine_ms", f"Smith 2001 replay, 2 bats x 5 protocols, engine: {lo:6.0f} ms "
+           f"(median {med:.0f})  [target 100 ms]", lo)
+
+
+def large_batches(engine: FlexibleEngine, quick: bool) -> None:
+    ball = load_protocol_any("proposed").ball.model
+    for name in ("ash-34", "aluminium-34"):
+        bat = load_bat_any(name).built.model
+        rng = np.random.default_rng(1)
+        sizes = (1000, 10_000) if quick else (1000, 10_000, 100_000)
+        for n in sizes:
+            z = rng.uniform(bat.length - 0.30, bat.length - 0.03, n)
+            batch = ImpactBatch(z - 0.1524, -rng.uniform(20, 45, n), rng.uniform(0, 60, n))
+            engine.solve(bat, ball, 0.1524, ImpactBatch(batch.impact_location[:5],
+                                                        batch.pitch_speed[:5],
+                                                        batch.bat_angular_speed[:5]))
+            clear_engine_caches()
+            t0 = time.perf_counter()
+            engine.solve(bat, ball, 0.1524, batch)
+            rate = n / (time.perf_counter() - t0)
+            report(f"impacts_per_s_{name}_{n}", f"{name:<13} {n:>7} random impacts in one "
+                   f"batch: {rate:8.0f} impacts per second  [target 50,000]", rate)
+
+
+def accuracy() -> None:
+    bats = [load_bat_any(b).built for b in SHIPPED_BATS]
+    protocols = [load_protocol_any(p) for p in SHIPPED_PROTOCOLS]
+    jobs = [(b, p.protocol, p.ball) for b in bats for p in protocols]
+
+    def values(engine):
+        return [[c.exit_speed for c in r.conditions] + [r.value]
+                for r in run_protocols(jobs, engine)]
+    converged = values(FlexibleEngine(n_modes=48, time_step=2.5e-6, shell_max_frequency=16e3))
+    default = values(FlexibleEngine())
+    for i, bat in enumerate(SHIPPED_BATS):
+        rows = range(i * len(protocols), (i + 1) * len(protocols))
+        err = max(abs(a / b - 1) for k in rows for a, b in zip(default[k], converged[k],
+                                                               strict=True))
+        report(f"error_{bat}", f"{bat:<15} every exit speed and metric, all protocols: "
+               f"largest relative difference from converged {err:.1e}  [target 2e-4]", err)
+
+
+def against_reference(engine: FlexibleEngine, quick: bool) -> None:
+    bat = r161_bat()
+    z = np.linspace(bat.length - 0.30, bat.length - 0.03, 11 if quick else 71)
     modes = cached_modes(bat, "pinned", PIVOT, engine.n_modes)
-    batch = ImpactBatch(sweep - PIVOT, -60.0, 0.0)
+    batch = ImpactBatch(z - PIVOT, -60.0, 0.0)
     t_batch, _ = timed(lambda: engine.solve(bat, BALL, PIVOT, batch), repeat=5)
     fast = engine.solve(bat, BALL, PIVOT, batch).exit_speed
-    for rtol in (1e-6, 1e-10):
-        t0 = time.perf_counter()
-        ref = np.array([reference_impact(bat, BALL, PIVOT, "pinned", zi, -60.0, 0.0, modes,
-                                         rtol=rtol, atol=1e-12 if rtol < 1e-8 else 1e-9)[0]
-                        for zi in sweep])
-        t_ref = (time.perf_counter() - t0) * 1e3
-        agree = np.max(np.abs(fast - ref)) / 60.0
-        print(f"reference solve_ivp (rtol {rtol:.0e}), {sweep.size} locations: {t_ref:8.0f} ms; "
-              f"batch engine {t_batch:.1f} ms -> {t_ref / t_batch:6.0f}x faster; "
-              f"max |difference| {agree:.1e} of the approach speed")
+    t0 = time.perf_counter()
+    ref = np.array([reference_impact(bat, BALL, PIVOT, "pinned", zi, -60.0, 0.0, modes,
+                                     rtol=1e-10, atol=1e-12)[0] for zi in z])
+    t_ref = (time.perf_counter() - t0) * 1e3
+    report("speedup_over_solve_ivp", f"solve_ivp (rtol 1e-10), {z.size} locations: "
+           f"{t_ref:7.0f} ms; batch engine {t_batch:.1f} ms -> {t_ref / t_batch:5.0f}x faster; "
+           f"max |difference| {np.max(np.abs(fast - ref)) / 60.0:.1e} of the approach speed",
+           t_ref / t_batch)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="smaller batches, fewer locations")
+    parser.add_argument("--json", type=Path, help="write the figures to this file")
+    args = parser.parse_args()
+    engine = FlexibleEngine()
+    print(f"flexible engine: {engine.settings()['integrator']}; n_modes={engine.n_modes}, "
+          f"time step {engine.settings()['time_step']} s")
+    sweeps(engine)
+    hollow_against_solid(engine)
+    study(engine)
+    large_batches(engine, args.quick)
+    accuracy()
+    against_reference(engine, args.quick)
+    if args.json:
+        args.json.write_text(json.dumps(figures, indent=1) + "\n")
+        print(f"wrote {args.json}")
 
 
 if __name__ == "__main__":
-    main(quick="--quick" in sys.argv)
+    main()

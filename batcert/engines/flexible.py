@@ -35,9 +35,9 @@ Integration: all impacts of the batch advance together, arrays shaped (impacts, 
 linear dynamics are propagated exactly; only the contact force is approximated, by the
 exponential Runge-Kutta scheme ETDRK4 (Cox & Matthews, J. Comput. Phys. 176 (2002) 430,
 Eqs. 26-29) in complex modal coordinates ``Z = p - conj(lambda) q``, ``Z' = lambda Z - g F``.
-Stiff modes cost nothing in stability: the step only resolves the contact pulse (at the default
-10 us, halving the step moves exit speeds by ~1e-5 for solid bats and up to ~1e-3 for thin hollow
-barrels, whose contact force has sharper kinks; Nathan used RK4 at 5 us). An impact ends at
+Stiff modes cost nothing in stability: the step only resolves the contact pulse. The defaults
+(20 us for a solid bat, 12.5 us for a hollow one, whose contact force has sharper kinks; Nathan
+used RK4 at 5 us) keep exit speeds within 0.01 % of the converged engine (module constants). An impact ends at
 separation (``u <= 0`` after maximum compression); the exit speed is the ball's velocity then,
 ``w2`` and the COR come from momentum balance (:func:`rigid.momentum_outcome`: Smith 2001
 Eqs. 1 and 3 for a pinned bat; for a free bat its angular velocity about the CG and the impact
@@ -61,11 +61,12 @@ from batcert.physics.modes import Modes
 SUPPORTS = ("pinned", "free")
 # Accuracy-driven defaults: every exit speed of the shipped bats under the shipped protocols
 # within 0.01 % of the converged engine (48 modes, 2.5 us, shell modes to 16 kHz), half the
-# 0.02 % an exit speed needs (measured: solid 4.7e-5 at 20 us, hollow 3.0e-5 at 10 us with
-# shell modes to 10 kHz; tests/engines/test_convergence.py). A hollow barrel's contact force
-# has sharper kinks, hence its shorter step; shell modes to 8 kHz would leave 2e-4.
+# 0.02 % an exit speed needs (measured: solid 4.7e-5 at 20 us, hollow 2.4e-5 at 12.5 us with
+# shell modes to 10 kHz, 2.6e-5 for walls down to 1.8 mm; tests/engines/test_convergence.py).
+# A hollow barrel's contact force has sharper kinks, hence its shorter step (20 us: 1.3e-4);
+# shell modes to 8 kHz would leave 2e-4.
 DEFAULT_MODES = 16
-SOLID_STEP, HOLLOW_STEP = 20e-6, 10e-6  # [s]
+SOLID_STEP, HOLLOW_STEP = 20e-6, 12.5e-6  # [s]
 DEFAULT_SHELL_FREQUENCY = 10_000.0  # [Hz]
 BALL_LOSS = ("compression", "relative-speed")
 _PIVOT_CLEARANCE = 1e-3  # an impact closer than this to the pivot is refused [m]
@@ -93,7 +94,7 @@ class FlexibleEngine:
         Bending modes kept [-] (Nathan used up to 18); the rest are residual compliance.
     time_step : float or None
         Integration step [s]; only the contact pulse has to be resolved (module notes). None:
-        20 us for a solid bat, 10 us for a hollow one (module constants).
+        20 us for a solid bat, 12.5 us for a hollow one (module constants).
     refine : int
         Beam elements per bat slice for the modes [-].
     residual : bool

@@ -114,8 +114,9 @@ The set-up reported for a condition follows from its speeds: `stationary-bat` (w
 | `fixed-from-tip` | `L - pivot - from_tip` |
 
 The sweet spot is always located (reports show it beside the COP). The search samples
-`sweep_points` locations evenly over the window, refines around each condition's best sample on
-a grid at most `resolution / 2` apart, and fits a parabola through the best three points. Under
+`sweep_points` locations evenly over the window, estimates each condition's peak by a parabola
+through its best three samples, solves five points `resolution / 2` apart around the estimate
+(moving them if the best falls on their edge) and fits a parabola through the best three. Under
 the `sweet-spot` and `max-metric` rules a maximum on the window's first or last sample is flagged
 (`at_window_edge`) with a warning: the true maximum lies outside the window.
 

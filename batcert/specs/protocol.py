@@ -99,8 +99,8 @@ LOCATION_SCHEMA = Schema("impact-location rule", (
     Field("window", list_of(quantity("length", minimum=0.0), min_items=2,
                             describe="[nearest, farthest] distance from the tip"),
           "Search window as distances from the tip.", default=[0.03, 0.30]),
-    Field("sweep_points", integer(minimum=5, maximum=2001), "Coarse sweep points over the window.",
-          default=71),
+    Field("sweep_points", integer(minimum=5, maximum=2001), "Coarse sweep points over the window "
+          "(the curve the reports plot; the peak is then refined to `resolution`).", default=36),
     Field("resolution", quantity("length", positive=True), "Located to at least this.",
           default=0.001),
     Field("from_tip", quantity("length", positive=True), "Impact distance from the tip for "

@@ -275,7 +275,7 @@ def test_sweep_spans_the_window(ash):
     pivot = 6 * IN
     assert grid[0] == pytest.approx(0.860 - pivot - 12 * IN)
     assert grid[-1] == pytest.approx(0.860 - pivot - 2 * IN)
-    assert len(grid) == len(c.sweep.exit_speed) == len(c.sweep.metric) == 71
+    assert len(grid) == len(c.sweep.exit_speed) == len(c.sweep.metric) == 36
     assert np.all(np.diff(grid) > 0)
 
 

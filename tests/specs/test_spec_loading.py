@@ -90,7 +90,7 @@ def test_protocol_values_and_defaults(repo_root):
     assert c.bat_speed_from_tip == pytest.approx(6 * IN)
     loc = p.impact_location
     assert loc.window == pytest.approx((2 * IN, 12 * IN))
-    assert (loc.sweep_points, loc.resolution) == (71, 0.001)  # defaults
+    assert (loc.sweep_points, loc.resolution) == (36, 0.001)  # defaults
     assert p.support == "pinned" and p.aggregate == "mean"
     assert (p.limit.max, p.limit.tolerance) == (0.728, 0.0)
     assert p.line("limit", "max") is not None and p.line("limit", "max") > p.line("limit")

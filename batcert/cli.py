@@ -17,12 +17,16 @@ import click  # noqa: E402
 from batcert import __version__, console  # noqa: E402
 from batcert.errors import InputError  # noqa: E402
 
+ENVIRONMENT_EXIT_CODES = """  4  the reports cannot be written (permissions, full disk, a path that is a file)
+  130  interrupted (Ctrl-C); no partial or temporary file is left"""
+
 EXIT_CODES = """\b
 Exit codes:
   0  every verdict passes (or the protocol sets no limit)
   1  at least one verdict fails
   2  usage error (unknown option, unknown protocol name, missing file argument)
-  3  invalid input (a spec file has errors; nothing is written)"""
+  3  invalid input (a spec file has errors; nothing is written)
+""" + ENVIRONMENT_EXIT_CODES
 
 CHECK_EXIT_CODES = """\b
 Exit codes:
@@ -47,6 +51,7 @@ def _guard(func):
     def wrapper(*args, **kwargs):
         from batcert.engines import EngineUnavailable
         from batcert.errors import UsageProblem
+        from batcert.reports.write import OutputError
         from batcert.runner.runner import ProtocolError
         from batcert.specs.resolve import NotFound
         try:
@@ -59,6 +64,12 @@ def _guard(func):
             sys.exit(3)
         except (NotFound, EngineUnavailable, UsageProblem) as exc:
             raise click.UsageError(str(exc)) from None
+        except OutputError as exc:
+            console.error(str(exc))
+            sys.exit(4)
+        except KeyboardInterrupt:
+            console.error("interrupted")
+            sys.exit(130)
 
     return wrapper
 
@@ -73,10 +84,32 @@ def _formats(value: str) -> list[str]:
 
 def _report_dir(out_dir: Path | None, no_reports: bool, as_json: bool) -> Path | None:
     """Where the reports go, or None for none: ``--no-reports`` writes nothing, ``--json``
-    writes only where ``--out`` says, otherwise ``--out`` or ./reports."""
+    writes only where ``--out`` says, otherwise ``--out`` or ./reports. A location that
+    cannot hold them is refused now, before any work (exit 4)."""
     if no_reports or (as_json and out_dir is None):
         return None
-    return out_dir if out_dir is not None else Path("reports")
+    target = out_dir if out_dir is not None else Path("reports")
+    from batcert.reports.write import check_output_dir
+    check_output_dir(target)
+    return target
+
+
+def _write_then_show(results: list, target: Path | None, fmts: list[str], show) -> None:
+    """Write every result's reports (each set whole or not at all), then ``show(results,
+    paths)``. If writing fails, the results are still shown (the verdict is not lost) before
+    the failure ends the command (exit 4)."""
+    paths: list[list[Path]] = [[] for _ in results]
+    failure = None
+    if target is not None:
+        from batcert.reports.write import OutputError, write_reports
+        try:
+            for i, r in enumerate(results):
+                paths[i] = write_reports(r, target, fmts)
+        except OutputError as exc:
+            failure = exc
+    show(results, paths)
+    if failure is not None:
+        raise failure
 
 
 def _output_options(printed: str, engine_help: str = "Impact engine tier."):
@@ -126,18 +159,17 @@ def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
     fmts = _formats(formats)
     loaded = load_bat_any(bat)
     inputs = [load_protocol_any(p) for p in protocols]  # all inputs validated before running
-    results = run_bat(loaded, inputs, engine)
-    written: list[list[Path]] = [[] for _ in results]
     target = _report_dir(out_dir, no_reports, as_json)
-    if target is not None:
-        from batcert.reports.write import write_reports
-        written = [write_reports(r, target, fmts) for r in results]
-    if as_json:
-        data = [r.to_dict() for r in results]
-        console.print_json(data[0] if len(data) == 1 else data)
-    else:
-        for r, paths in zip(results, written, strict=True):
-            console.run_summary(r, paths)
+    results = run_bat(loaded, inputs, engine)
+
+    def show(results, written):
+        if as_json:
+            data = [r.to_dict() for r in results]
+            console.print_json(data[0] if len(data) == 1 else data)
+        else:
+            for r, paths in zip(results, written, strict=True):
+                console.run_summary(r, paths)
+    _write_then_show(results, target, fmts, show)
     sys.exit(1 if any(r.verdict == "fail" for r in results) else 0)
 
 
@@ -262,7 +294,8 @@ Exit codes:
   0  the comparison ran and no protocol limit fails (study protocols set no limit)
   1  a protocol with a limit fails for at least one bat
   2  usage error (unknown protocol, study, bat or engine; fewer than two bats)
-  3  invalid input (a spec file has errors; nothing is written)"""
+  3  invalid input (a spec file has errors; nothing is written)
+""" + ENVIRONMENT_EXIT_CODES
 
 LEAGUE_EXIT_CODES = """\b
 Exit codes:
@@ -270,20 +303,18 @@ Exit codes:
   1  a rule fails, or a rule is not modelled (never counted as a pass; see
      --allow-not-modelled)
   2  usage error (unknown league, bat or engine)
-  3  invalid input (a spec file has errors; nothing is written)"""
+  3  invalid input (a spec file has errors; nothing is written)
+""" + ENVIRONMENT_EXIT_CODES
 
 
-def _deliver(result, summary, out_dir, fmts, no_reports: bool, as_json: bool) -> None:
-    """Write the reports (see :func:`_report_dir`), then print JSON or the terminal summary."""
-    target = _report_dir(out_dir, no_reports, as_json)
-    paths = []
-    if target is not None:
-        from batcert.reports.write import write_reports
-        paths = write_reports(result, target, fmts)
-    if as_json:
-        console.print_json(result.to_dict())
-    else:
-        summary(result, paths)
+def _deliver(result, summary, target, fmts, as_json: bool) -> None:
+    """Write the reports (see :func:`_write_then_show`), then print JSON or the summary."""
+    def show(results, paths):
+        if as_json:
+            console.print_json(results[0].to_dict())
+        else:
+            summary(results[0], paths[0])
+    _write_then_show([result], target, fmts, show)
 
 
 @main.command(epilog=COMPARE_EXIT_CODES)
@@ -302,8 +333,9 @@ def compare(bats, protocols, study, reference, engine, out_dir, formats, no_repo
     the COP against the sweet spot, and a study's claims tested against the model."""
     from batcert.commands.compare import run_comparison
     fmts = _formats(formats)
+    target = _report_dir(out_dir, no_reports, as_json)
     result = run_comparison(list(bats), list(protocols), study, reference, engine)
-    _deliver(result, console.comparison_summary, out_dir, fmts, no_reports, as_json)
+    _deliver(result, console.comparison_summary, target, fmts, as_json)
     failed = any(v == "fail" for p in result.protocols for v in p.verdicts.values())
     sys.exit(1 if failed else 0)
 
@@ -321,8 +353,9 @@ def league(league_id, bats, engine, allow_not_modelled, out_dir, formats, no_rep
     material and performance, each with measured value, limit and verdict."""
     from batcert.commands.league import run_league
     fmts = _formats(formats)
+    target = _report_dir(out_dir, no_reports, as_json)
     result = run_league(league_id, list(bats), engine)
-    _deliver(result, console.league_summary, out_dir, fmts, no_reports, as_json)
+    _deliver(result, console.league_summary, target, fmts, as_json)
     sys.exit(0 if result.passed(allow_not_modelled) else 1)
 
 

@@ -1,10 +1,13 @@
-"""Render reports in memory, then write them atomically: a reader never sees half a report.
+"""Render reports in memory, then write them atomically, as a set: a reader never sees half a
+report, and a set is replaced whole or not at all.
 
 All requested formats are rendered before anything touches the disk, so a rendering error writes
 nothing. Each file is then staged as a temporary file in the target directory (flushed and
-fsynced) and only when every file is staged are they moved onto their targets with
-``os.replace``. On any error the temporary files are removed and existing reports stay as they
-were.
+fsynced); only when every file is staged are existing reports set aside and the staged files
+moved onto their targets with ``os.replace``. If any step fails, the files already moved are
+taken back, the set-aside reports restored and every temporary file removed, so the previous set
+stays as it was. A location that cannot hold the reports raises :class:`OutputError` (the
+command line's exit code 4), and :func:`check_output_dir` finds it before any work is done.
 """
 
 from __future__ import annotations
@@ -40,16 +43,21 @@ class ReportKind:
         raise ValueError(f"unknown report format {fmt!r} (choose from {', '.join(SUFFIXES)})")
 
 
+def _short(stem: str) -> str:
+    """Keep file names short (well under any file system's 255 bytes); a hash of the whole
+    keeps different inputs apart."""
+    if len(stem) > 120:
+        stem = stem[:100] + "-" + hashlib.sha256(stem.encode()).hexdigest()[:10]
+    return stem
+
+
 def run_stem(result: Any) -> str:
     """``<bat-slug>--<protocol-id>``, e.g. ``ash-34-in--proposed``."""
-    return f"{slugify(result.bat, 'bat')}--{slugify(result.protocol, 'protocol')}"
+    return _short(f"{slugify(result.bat, 'bat')}--{slugify(result.protocol, 'protocol')}")
 
 
 def _stem(kind: str, what: str, bats: str) -> str:
-    stem = f"{kind}--{slugify(what)}--{slugify(bats)}"
-    if len(stem) > 120:  # keep file names short; the hash keeps different inputs apart
-        stem = stem[:100] + "-" + hashlib.sha256(stem.encode()).hexdigest()[:10]
-    return stem
+    return _short(f"{kind}--{slugify(what)}--{slugify(bats)}")
 
 
 def comparison_stem(result: Any) -> str:
@@ -103,12 +111,65 @@ def write_reports(result: Any, out_dir: Path, formats: Sequence[str] = ("md", "h
     return write_texts({out_dir / f"{stem}{SUFFIXES[f]}": kind.render(result, f) for f in wanted})
 
 
+class OutputError(OSError):
+    """The reports cannot be written where asked (permissions, a full disk, a path that is a
+    file or too long): an environment problem, not bad input."""
+
+    def __init__(self, where: Path, reason: str):
+        super().__init__(f"cannot write reports to {where}: {reason}")
+        self.where, self.reason = where, reason
+
+
+def _reason(exc: OSError) -> str:
+    return exc.strerror or str(exc)
+
+
+def check_output_dir(directory: Path) -> None:
+    """Make sure reports can be written in ``directory`` before any work, leaving nothing
+    behind (a missing directory is not created here): raise :class:`OutputError` if it, or the
+    nearest existing folder above it, is not a directory or refuses a new file, or if a name on
+    the way is too long."""
+    directory = Path(directory)
+    missing: list[str] = []
+    existing = directory
+    try:
+        while not existing.exists() and existing != existing.parent:
+            missing.append(existing.name)
+            existing = existing.parent
+        if existing.exists() and not existing.is_dir():
+            raise OutputError(directory, f"{existing} is not a directory")
+    except OSError as exc:
+        if isinstance(exc, OutputError):
+            raise
+        raise OutputError(directory, _reason(exc)) from None
+    try:
+        limit = os.pathconf(existing, "PC_NAME_MAX")
+    except (OSError, ValueError):
+        limit = 255
+    for name in missing:
+        if len(name.encode()) > limit:
+            raise OutputError(directory, f"the name {name[:40]}... is longer than {limit} bytes")
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".batcert-probe.", suffix=".tmp", dir=existing)
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as exc:
+        raise OutputError(directory, _reason(exc)) from None
+
+
 def write_texts(texts: dict[Path, str]) -> list[Path]:
-    """Write already-rendered reports: every file is staged before the first one replaces its
-    target, and each replacement is atomic. Parent directories are created."""
-    for directory in {Path(p).parent for p in texts}:
-        directory.mkdir(parents=True, exist_ok=True)
-    _write_all({Path(p): t for p, t in texts.items()})
+    """Write already-rendered reports as one set (module notes). Parent directories are
+    created. Raises :class:`OutputError`, leaving the previous set as it was."""
+    try:
+        for directory in {Path(p).parent for p in texts}:
+            check_output_dir(directory)
+            directory.mkdir(parents=True, exist_ok=True)
+        _write_all({Path(p): t for p, t in texts.items()})
+    except OutputError:
+        raise
+    except OSError as exc:
+        where = Path(exc.filename) if getattr(exc, "filename", None) else next(iter(texts))
+        raise OutputError(where, _reason(exc)) from None
     return [Path(p) for p in texts]
 
 
@@ -120,18 +181,50 @@ def atomic_write_text(path: Path, text: str, encoding: str = "utf-8") -> Path:
 
 
 def _write_all(texts: dict[Path, str], encoding: str = "utf-8") -> None:
+    """Stage every file, set the existing targets aside, move the staged files in; on any
+    failure (or an interrupt) undo what was done, so the previous set stays whole."""
     staged: list[tuple[str, Path]] = []
+    aside: list[tuple[str, Path]] = []  # (backup, target) of reports that existed
+    placed: list[Path] = []
     try:
         for target, text in texts.items():
+            if target.is_dir():
+                raise OutputError(target, "a directory is in the way of this report")
             staged.append((_stage(target, text.encode(encoding)), target))
+        for _, target in staged:
+            if target.exists():
+                backup = _reserve(target, ".bak")
+                try:
+                    os.replace(target, backup)
+                except BaseException:
+                    _unlink_quietly(backup)
+                    raise
+                aside.append((backup, target))
         for tmp, target in staged:
             os.replace(tmp, target)
+            placed.append(target)
     except BaseException:
+        for target in placed:
+            _unlink_quietly(str(target))
+        for backup, target in aside:
+            try:
+                os.replace(backup, target)
+            except OSError:
+                pass
         for tmp, _ in staged:
             _unlink_quietly(tmp)
         raise
+    for backup, _ in aside:
+        _unlink_quietly(backup)
     for directory in {target.parent for target in texts}:
         _fsync_dir(directory)
+
+
+def _reserve(target: Path, suffix: str) -> str:
+    """A fresh name next to ``target`` (created empty, to be replaced)."""
+    fd, name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=suffix, dir=target.parent)
+    os.close(fd)
+    return name
 
 
 def _stage(target: Path, data: bytes) -> str:

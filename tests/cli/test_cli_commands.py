@@ -235,3 +235,45 @@ def test_inspect_invalid_bat_exits_3(batcert_cli):
     result = batcert_cli("inspect", bad, "--json")
     assert result.exit_code == 3 and result.stdout == ""
     assert f"{bad}:8: material:" in result.stderr
+
+
+@pytest.mark.parametrize("where", ["/dev/null", "under-file", "long-name"])
+def test_bad_output_location_exits_4_before_running(batcert_cli, tmp_path, monkeypatch, where):
+    # one line, its own exit code, and the engine is never started
+    import batcert.commands.run as run_module
+
+    def never(*args, **kwargs):
+        raise AssertionError("the engine ran")
+    monkeypatch.setattr(run_module, "run_protocols", never)
+    regular = tmp_path / "a-file"
+    regular.write_text("x")
+    out = {"/dev/null": Path("/dev/null"), "under-file": regular / "reports",
+           "long-name": tmp_path / ("r" * 300)}[where]
+    result = batcert_cli("run", ASH, "-p", "proposed", "--out", out)
+    assert result.exit_code == 4
+    assert result.stderr.startswith("error: cannot write reports to")
+    assert len(result.stderr.strip().splitlines()) == 1 and "Traceback" not in result.stderr
+
+
+def test_write_failure_after_running_still_shows_the_verdict(batcert_cli, tmp_path, monkeypatch):
+    import batcert.reports.write as write
+
+    def full(target, data):
+        raise OSError(28, "No space left on device")
+    monkeypatch.setattr(write, "_stage", full)
+    result = batcert_cli("run", ASH, "-p", "ncaa-bbcor", "--out", tmp_path / "reports")
+    assert result.exit_code == 4
+    assert "FAIL" in result.stdout and "BBCOR" in result.stdout  # the verdict is not lost
+    assert "No space left on device" in result.stderr
+    assert not any((tmp_path / "reports").glob("*"))
+
+
+def test_interrupt_exits_130_without_leftovers(batcert_cli, tmp_path, monkeypatch):
+    import batcert.commands.run as run_module
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+    monkeypatch.setattr(run_module, "run_protocols", interrupted)
+    result = batcert_cli("run", ASH, "-p", "proposed", "--out", tmp_path / "reports")
+    assert result.exit_code == 130 and "interrupted" in result.stderr
+    assert list(tmp_path.iterdir()) == []

@@ -268,3 +268,52 @@ def test_atomic_write_text_interrupted(tmp_path, monkeypatch):
         atomic_write_text(path, "new")
     assert path.read_bytes() == b"old"
     assert names(tmp_path) == {"report.md"}
+
+
+@pytest.mark.parametrize("fail_at", [1, 2, 3, 4, 5])
+def test_a_set_is_replaced_whole_or_not_at_all(result, tmp_path, monkeypatch, fail_at):
+    # Three existing reports are set aside and three new ones moved in: six renames. Whichever
+    # fails, the old set is back whole and no temporary or backup file is left.
+    old = {fmt: f"old {fmt}" for fmt in FORMATS}
+    for fmt, text in old.items():
+        (tmp_path / f"{STEM}{FORMATS[fmt]}").write_text(text, encoding="utf-8")
+    real_replace, calls = os.replace, []
+
+    def replace(src, dst):
+        calls.append((src, dst))
+        if len(calls) == fail_at:
+            raise OSError(28, "No space left on device")
+        return real_replace(src, dst)
+
+    monkeypatch.setattr(write.os, "replace", replace)
+    with pytest.raises(write.OutputError, match="No space left on device"):
+        write_reports(result, tmp_path, ("md", "html", "json"))
+    monkeypatch.setattr(write.os, "replace", real_replace)
+    assert temp_files(tmp_path) == []
+    for fmt, text in old.items():
+        assert (tmp_path / f"{STEM}{FORMATS[fmt]}").read_text(encoding="utf-8") == text
+
+
+def test_a_directory_in_the_way_leaves_the_set_as_it_was(result, tmp_path):
+    (tmp_path / f"{STEM}.md").write_text("old md", encoding="utf-8")
+    (tmp_path / f"{STEM}.html").mkdir()
+    with pytest.raises(write.OutputError, match="a directory is in the way"):
+        write_reports(result, tmp_path)
+    assert (tmp_path / f"{STEM}.md").read_text(encoding="utf-8") == "old md"
+    assert not (tmp_path / f"{STEM}.json").exists() and temp_files(tmp_path) == []
+
+
+@pytest.mark.parametrize("where", ["file", "under-file", "long-name", "proc"])
+def test_check_output_dir_refuses_without_writing(tmp_path, where):
+    regular = tmp_path / "a-file"
+    regular.write_text("x")
+    target = {"file": regular, "under-file": regular / "reports",
+              "long-name": tmp_path / ("x" * 300), "proc": Path("/proc/batcert-reports")}[where]
+    with pytest.raises(write.OutputError):
+        write.check_output_dir(target)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a-file"]
+
+
+def test_check_output_dir_creates_nothing(tmp_path):
+    write.check_output_dir(tmp_path / "new" / "reports")
+    assert list(tmp_path.iterdir()) == []

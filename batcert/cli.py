@@ -82,6 +82,45 @@ def _formats(value: str) -> list[str]:
     return items
 
 
+def _complete(kind: str):
+    """Shell completion of an argument naming a ``kind`` of input: the shipped names that
+    start with what was typed, and files (the shell's own file completion)."""
+    def complete(ctx, param, incomplete: str):
+        from click.shell_completion import CompletionItem
+
+        from batcert.specs.resolve import shipped_names
+        items = [CompletionItem(n) for n in shipped_names(kind) if n.startswith(incomplete)]
+        return items + [CompletionItem(incomplete, type="file")]
+    return complete
+
+
+class _Clock:
+    """Wall time per phase, logged with ``--verbose``."""
+
+    def __init__(self) -> None:
+        import time
+        self._time = time.perf_counter
+        self._last = self._time()
+        self.laps: list[tuple[str, float]] = []
+
+    def lap(self, name: str) -> None:
+        now = self._time()
+        self.laps.append((name, now - self._last))
+        self._last = now
+
+    def report(self) -> None:
+        console.log("timings: " + ", ".join(f"{n} {t:.3f} s" for n, t in self.laps))
+
+
+def _stepper(bar):
+    """An ``on_step`` callback that shows the engine's steps on a progress display."""
+    def on_step(step: int, runs: int, impacts: int) -> None:
+        bar.update(f"step {step}, {runs} protocol run{'s' if runs != 1 else ''}, "
+                   f"{impacts} impacts")
+        console.log(f"engine step {step}: {runs} runs, {impacts} impacts", level=2)
+    return on_step
+
+
 def _report_dir(out_dir: Path | None, no_reports: bool, as_json: bool) -> Path | None:
     """Where the reports go, or None for none: ``--no-reports`` writes nothing, ``--json``
     writes only where ``--out`` says, otherwise ``--out`` or ./reports. A location that
@@ -138,17 +177,36 @@ def _output_options(printed: str, engine_help: str = "Impact engine tier."):
     return decorate
 
 
-@click.group(epilog=EXIT_CODES, context_settings={"help_option_names": ["-h", "--help"]})
-@click.version_option(__version__, prog_name="batcert")
-def main() -> None:
+@click.group(epilog=EXIT_CODES + """
+
+\b
+Examples:
+  batcert run bats/aluminium-34.yaml --protocol proposed
+  batcert compare --study smith2001
+  batcert list bats
+Shell completion: see docs/cli.md (e.g. eval "$(_BATCERT_COMPLETE=bash_source batcert)").""",
+             context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, "--version", "-V", prog_name="batcert")
+@click.option("--verbose", "-v", count=True, help="Log to stderr what is done and how long it "
+              "takes (-v: inputs, engine settings, timings).")
+@click.option("--quiet", "-q", is_flag=True, help="Print only verdicts and errors.")
+def main(verbose: int, quiet: bool) -> None:
     """Certify baseball bats against test protocols with a reduced-order impact engine."""
+    console.configure(verbose=0 if quiet else verbose, quiet=quiet)
 
 
-@main.command(epilog=EXIT_CODES)
-@click.argument("bat")
+@main.command(epilog=EXIT_CODES + """
+
+\b
+Examples:
+  batcert run bats/aluminium-34.yaml --protocol proposed
+  batcert run ash-34 -p ncaa-bbcor -p ncaa-besr --out reports/ash
+  batcert run ash-34 -p proposed --engine rigid --json | jq .results[0].value""")
+@click.argument("bat", shell_complete=_complete("bat"))
 @click.option("--protocol", "-p", "protocols", multiple=True, required=True,
-              help="Shipped protocol id (see `batcert protocols`) or a protocol YAML path; repeat "
-                   "for several.")
+              shell_complete=_complete("protocol"),
+              help="Shipped protocol id (see `batcert list protocols`) or a protocol YAML path; "
+                   "repeat for several.")
 @_output_options("results")
 @_guard
 def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
@@ -157,10 +215,17 @@ def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
     from batcert.commands.inputs import load_bat_any, load_protocol_any
     from batcert.commands.run import run as run_bat
     fmts = _formats(formats)
+    clock = _Clock()
     loaded = load_bat_any(bat)
     inputs = [load_protocol_any(p) for p in protocols]  # all inputs validated before running
+    console.log(f"bat {loaded.path}; protocols " + ", ".join(str(p.protocol.path) for p in inputs))
+    clock.lap("inputs")
     target = _report_dir(out_dir, no_reports, as_json)
-    results = run_bat(loaded, inputs, engine)
+    with console.progress("running") as bar:
+        results = run_bat(loaded, inputs, engine, on_step=_stepper(bar))
+    console.log(f"engine {engine}: " + "; ".join(f"{k} {v}" for k, v in
+                                                 results[0].engine_settings.items()))
+    clock.lap("engine")
 
     def show(results, written):
         if as_json:
@@ -170,11 +235,19 @@ def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
             for r, paths in zip(results, written, strict=True):
                 console.run_summary(r, paths)
     _write_then_show(results, target, fmts, show)
+    clock.lap("reports")
+    clock.report()
     sys.exit(1 if any(r.verdict == "fail" for r in results) else 0)
 
 
-@main.command(epilog=CHECK_EXIT_CODES)
-@click.argument("file")
+@main.command(epilog=CHECK_EXIT_CODES + """
+
+\b
+Examples:
+  batcert inspect bats/aluminium-34.yaml
+  batcert inspect ash-34 --pivot '6 in' --json
+  batcert inspect protocols/balls/collegiate-baseball.yaml""")
+@click.argument("file", shell_complete=_complete("bat"))
 @click.option("--pivot", type=str, default=None, help="Pivot from the knob for the mass "
               "properties, e.g. '6 in' (default: the measured pivot, else 6 in).")
 @click.option("--json", "as_json", is_flag=True, help="Print only JSON on stdout (SI units).")
@@ -252,7 +325,12 @@ def _show_ball(info: dict) -> None:
                   "against a rigid wall")
 
 
-@main.command(epilog=CHECK_EXIT_CODES)
+@main.command(epilog=CHECK_EXIT_CODES + """
+
+\b
+Examples:
+  batcert protocols
+  batcert protocols --json | jq '.[].id'""")
 @click.option("--json", "as_json", is_flag=True, help="Print only JSON on stdout.")
 def protocols(as_json):
     """List the shipped protocols."""
@@ -269,8 +347,13 @@ def protocols(as_json):
                           ", ".join(p["conditions"])] for p in items]), "shipped protocols")
 
 
-@main.command(epilog=CHECK_EXIT_CODES)
-@click.argument("files", nargs=-1, required=True)
+@main.command(epilog=CHECK_EXIT_CODES + """
+
+\b
+Examples:
+  batcert validate bats/*.yaml protocols/*.yaml
+  batcert validate my-bat.yaml""")
+@click.argument("files", nargs=-1, required=True, type=click.Path())
 def validate(files):
     """Check spec files (bat, ball, protocol, league); report every problem of every file."""
     from batcert.commands.validate import validate_file
@@ -317,11 +400,18 @@ def _deliver(result, summary, target, fmts, as_json: bool) -> None:
     _write_then_show([result], target, fmts, show)
 
 
-@main.command(epilog=COMPARE_EXIT_CODES)
-@click.argument("bats", nargs=-1)
+@main.command(epilog=COMPARE_EXIT_CODES + """
+
+\b
+Examples:
+  batcert compare --study smith2001
+  batcert compare ash-34 aluminium-34 -p proposed -p ncaa-bbcor
+  batcert compare bats/*.yaml -p ncaa-bbcor --reference ash-34 --json""")
+@click.argument("bats", nargs=-1, shell_complete=_complete("bat"))
 @click.option("--protocol", "-p", "protocols", multiple=True,
               help="Shipped protocol id or protocol YAML path; repeat for several.")
-@click.option("--study", default=None, help="Shipped study id (e.g. smith2001) or study YAML "
+@click.option("--study", default=None, shell_complete=_complete("study"),
+              help="Shipped study id (e.g. smith2001) or study YAML "
               "path: its protocols, default bats and claims.")
 @click.option("--reference", default=None, help="Reference bat of P = (P_bat - P_ref) / P_ref "
               "(Smith 2001 Eq. 6); default the first bat; added to the bats if not among them.")
@@ -334,15 +424,26 @@ def compare(bats, protocols, study, reference, engine, out_dir, formats, no_repo
     from batcert.commands.compare import run_comparison
     fmts = _formats(formats)
     target = _report_dir(out_dir, no_reports, as_json)
-    result = run_comparison(list(bats), list(protocols), study, reference, engine)
+    clock = _Clock()
+    with console.progress("comparing") as bar:
+        result = run_comparison(list(bats), list(protocols), study, reference, engine,
+                                on_step=_stepper(bar))
+    clock.lap("inputs and engine")
     _deliver(result, console.comparison_summary, target, fmts, as_json)
+    clock.lap("reports")
+    clock.report()
     failed = any(v == "fail" for p in result.protocols for v in p.verdicts.values())
     sys.exit(1 if failed else 0)
 
 
-@main.command(epilog=LEAGUE_EXIT_CODES)
-@click.argument("league_id", metavar="LEAGUE")
-@click.argument("bats", nargs=-1, required=True)
+@main.command(epilog=LEAGUE_EXIT_CODES + """
+
+\b
+Examples:
+  batcert league ncaa bats/ash-34.yaml bats/aluminium-34.yaml
+  batcert league mlb bats/*.yaml --json""")
+@click.argument("league_id", metavar="LEAGUE", shell_complete=_complete("league"))
+@click.argument("bats", nargs=-1, required=True, shell_complete=_complete("bat"))
 @click.option("--allow-not-modelled", is_flag=True, help="Exit 0 when nothing fails, even if "
               "some rules are not modelled (they are still reported).")
 @_output_options("league verdicts", "Impact engine tier for performance rules.")
@@ -354,9 +455,39 @@ def league(league_id, bats, engine, allow_not_modelled, out_dir, formats, no_rep
     from batcert.commands.league import run_league
     fmts = _formats(formats)
     target = _report_dir(out_dir, no_reports, as_json)
-    result = run_league(league_id, list(bats), engine)
+    clock = _Clock()
+    with console.progress("checking the rules") as bar:
+        result = run_league(league_id, list(bats), engine, on_step=_stepper(bar))
+    clock.lap("inputs and engine")
     _deliver(result, console.league_summary, target, fmts, as_json)
+    clock.lap("reports")
+    clock.report()
     sys.exit(0 if result.passed(allow_not_modelled) else 1)
+
+
+@main.command("list", epilog=CHECK_EXIT_CODES + """
+
+\b
+Examples:
+  batcert list
+  batcert list studies
+  batcert list bats --json""")
+@click.argument("kind", required=False,
+                type=click.Choice(["bats", "balls", "protocols", "leagues", "studies"]))
+@click.option("--json", "as_json", is_flag=True, help="Print only JSON on stdout.")
+def list_(kind, as_json):
+    """List the shipped bats, balls, protocols, leagues and studies (or one KIND of them):
+    the names that every command accepts in place of a file path."""
+    from batcert.commands.listing import LIST_KINDS, list_shipped
+    from batcert.reports.table import Table
+    kinds = [kind] if kind else list(LIST_KINDS)
+    data = {k: list_shipped(k) for k in kinds}
+    if as_json:
+        console.print_json(data if kind is None else data[kind])
+        return
+    for k, items in data.items():
+        console.table(Table(["name", "title", "file"],
+                            [[i["name"], i["title"], i["path"]] for i in items]), k)
 
 
 if __name__ == "__main__":

@@ -23,6 +23,50 @@ from batcert.reports.table import Badge, Table
 STYLES = {"pass": "green", "fail": "red", "warn": "yellow", "na": "dim", "info": "bold"}
 
 
+class _Settings:
+    verbose = 0  # 1: log inputs, engine settings and timings to stderr
+    quiet = False  # only verdicts and errors
+
+
+def configure(verbose: int = 0, quiet: bool = False) -> None:
+    """The command line's ``--verbose`` / ``--quiet``."""
+    _Settings.verbose, _Settings.quiet = int(verbose), bool(quiet)
+
+
+def log(message: str, level: int = 1) -> None:
+    """A line on stderr when ``--verbose`` is at least ``level``."""
+    if _Settings.verbose >= level:
+        _emit([("batcert: ", "dim"), (message, "")], stderr=True)
+
+
+class progress:
+    """A progress display on a terminal for long work (rich, on stderr); nothing when stderr
+    is not a terminal or with ``--quiet``. ``update(text)`` says what is being done."""
+
+    def __init__(self, description: str):
+        self.description = description
+        self._live: Any = None
+        self._task: Any = None
+
+    def __enter__(self) -> progress:
+        if _terminal(sys.stderr) and not _Settings.quiet:
+            from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
+            self._live = Progress(SpinnerColumn(), TextColumn("{task.description}"),
+                                  TimeElapsedColumn(), console=_console(True), transient=True)
+            self._live.start()
+            self._task = self._live.add_task(self.description)
+        return self
+
+    def update(self, text: str) -> None:
+        if self._live is not None:
+            self._live.update(self._task, description=f"{self.description}: {text}")
+
+    def __exit__(self, *exc) -> None:
+        if self._live is not None:
+            self._live.stop()
+
+
 def _terminal(stream) -> bool:
     """Styled output (rich) only on a terminal; plain text when piped or redirected, which
     also spares a script the ~20 ms of importing rich."""
@@ -80,6 +124,8 @@ def _cell_text(value: Any) -> str:
 
 def table(t: Table, title: str = "") -> None:
     """A report table on the terminal (summary rows after a blank line)."""
+    if _Settings.quiet:
+        return
     title = title or t.title
     if not _terminal(sys.stdout):
         _plain_table(t, title)
@@ -154,11 +200,15 @@ def _verdict(verdict: str | None) -> tuple[str, str]:
 
 
 def _wrote(paths: Sequence[Any]) -> None:
+    if _Settings.quiet:
+        return
     for p in paths:
         _emit([(f"  wrote {p}", "")])
 
 
 def _warnings(warnings: Sequence[str]) -> None:
+    if _Settings.quiet:
+        return
     for w in warnings:
         _emit([("  warning: ", "yellow"), (w, "")])
 
@@ -205,7 +255,7 @@ def comparison_summary(result, paths: Sequence[Any]) -> None:
         table(Table(["claim", "model", "evidence"],
                     [[c["id"], c["badge"], c["evidence"]] for c in view["claims"]]),
               "study claims against the model")
-    for f in result.findings:
+    for f in [] if _Settings.quiet else result.findings:
         _emit([(f"  - {f}", "")])
     _warnings(result.warnings)
     _wrote(paths)

@@ -17,7 +17,7 @@ from batcert.engines import get_engine
 from batcert.errors import UsageProblem
 from batcert.results.compare import BatEntry, ComparisonResult
 from batcert.runner.runner import run_protocols
-from batcert.specs.resolve import resolve
+from batcert.specs.resolve import display_path, resolve
 from batcert.specs.study import StudySpec
 
 
@@ -55,17 +55,18 @@ def _bats(bats: list[str], spec: StudySpec | None, reference: str | None
 
 
 def run_comparison(bats: list[str], protocols: list[str], study: str | None = None,
-                   reference: str | None = None, engine: str = "flexible") -> ComparisonResult:
+                   reference: str | None = None, engine: str = "flexible",
+                   on_step=None) -> ComparisonResult:
     """Run every bat under every protocol and compare them (Smith 2001 Eq. 6)."""
     spec = load_study_any(study) if study else None
     proto_inputs = _protocols(spec, protocols)
     loaded, ref = _bats(bats, spec, reference)
     eng = get_engine(engine)
     flat = run_protocols([(b.built, p.protocol, p.ball) for b in loaded for p in proto_inputs],
-                         eng)  # every bat and protocol solved together
+                         eng, on_step=on_step)  # every bat and protocol solved together
     runs = [flat[i * len(proto_inputs):(i + 1) * len(proto_inputs)] for i in range(len(loaded))]
     labels = bat_labels([b.built.spec.name for b in loaded], [str(b.path) for b in loaded])
-    entries = [BatEntry(lab, b.built.spec.name, str(b.path), b.built.spec.sha256,
+    entries = [BatEntry(lab, b.built.spec.name, display_path(b.path), b.built.spec.sha256,
                         b.built.model.length, b.built.model.construction,
                         b.built.model.material.name) for lab, b in zip(labels, loaded, strict=True)]
     return compare(runs, ref, bats=entries, title=spec.title if spec else "",

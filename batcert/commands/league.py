@@ -3,6 +3,7 @@ protocol (once per bat and protocol). Every input is loaded before anything runs
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 from batcert.analysis.league import bat_facts, evaluate_league, needs_run
@@ -11,13 +12,15 @@ from batcert.engines import get_engine
 from batcert.results.league import LeagueResult
 from batcert.results.run import RunResult
 from batcert.runner.runner import run_protocols
+from batcert.specs.resolve import display_path
 
 
-def run_league(league: str, bats: list[str], engine: str = "flexible") -> LeagueResult:
+def run_league(league: str, bats: list[str], engine: str = "flexible",
+               on_step=None) -> LeagueResult:
     """Evaluate every rule of a league on every bat."""
     spec = load_league_any(league)
     loaded = load_bats(bats)
-    facts = [bat_facts(b.built) for b in loaded]
+    facts = [replace(bat_facts(b.built), path=display_path(b.built.spec.path)) for b in loaded]
     protocols: dict[str, ProtocolInputs] = {}
     for rule in spec.rules:  # load every protocol before running anything
         if rule.kind == "performance" and rule.status == "modelled" and rule.protocol:
@@ -32,7 +35,8 @@ def run_league(league: str, bats: list[str], engine: str = "flexible") -> League
                 p = protocols[rule.id]
                 wanted.setdefault((i, p.protocol.path, p.protocol.id), p)
     results = dict(zip(wanted, run_protocols(
-        [(loaded[i].built, p.protocol, p.ball) for (i, _, _), p in wanted.items()], eng),
+        [(loaded[i].built, p.protocol, p.ball) for (i, _, _), p in wanted.items()], eng,
+        on_step=on_step),
         strict=True)) if eng is not None else {}
     per_bat = []
     for i, f in enumerate(facts):

@@ -9,7 +9,9 @@ from batcert.runner.runner import run_protocols
 
 
 def run(bat: LoadedBat, protocols: list[ProtocolInputs], engine: str = "flexible",
-        **engine_options) -> list[RunResult]:
-    """Run ``bat`` under every protocol with one engine."""
+        on_step=None, **engine_options) -> list[RunResult]:
+    """Run ``bat`` under every protocol with one engine (``on_step``: see
+    :func:`~batcert.runner.runner.drive`)."""
     eng = get_engine(engine, **engine_options)
-    return run_protocols([(bat.built, p.protocol, p.ball) for p in protocols], eng)
+    return run_protocols([(bat.built, p.protocol, p.ball) for p in protocols], eng,
+                         on_step=on_step)

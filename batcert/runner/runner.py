@@ -9,7 +9,7 @@ and locate the peaks (:mod:`batcert.runner.locate`), let the impact rule choose 
 from __future__ import annotations
 
 import datetime as _dt
-from collections.abc import Generator
+from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from typing import Any
 
@@ -30,6 +30,7 @@ from batcert.runner.conditions import Condition, conditions_from_spec
 from batcert.runner.locate import Search, locate_steps
 from batcert.specs.ball import BallSpec
 from batcert.specs.protocol import LimitSpec, ProtocolSpec
+from batcert.specs.resolve import display_path
 
 
 class ProtocolError(ValueError):
@@ -89,10 +90,12 @@ Solved = tuple[ImpactMetrics, dict[str, np.ndarray]]
 Steps = Generator[list[Request], list[Solved], Any]
 
 
-def drive(runs: list[Steps], engine: Engine) -> list[Any]:
+def drive(runs: list[Steps], engine: Engine,
+          on_step: Callable[[int, int, int], None] | None = None) -> list[Any]:
     """Advance every run in lockstep, solving all the requests of one step in a single engine
     call (:meth:`Engine.solve_many`): a comparison's bats and protocols share their sweeps,
-    refinements and final impacts. Returns each run's value, in order."""
+    refinements and final impacts. Returns each run's value, in order. ``on_step(step,
+    runs_active, impacts)`` is told of each step before it is solved (progress displays)."""
     values: list[Any] = [None] * len(runs)
     pending: dict[int, list[Request]] = {}
     for i, run in enumerate(runs):
@@ -100,8 +103,12 @@ def drive(runs: list[Steps], engine: Engine) -> list[Any]:
             pending[i] = next(run)
         except StopIteration as stop:
             values[i] = stop.value
+    step = 0
     while pending:
         order = [(i, req) for i, reqs in pending.items() for req in reqs]
+        step += 1
+        if on_step is not None:
+            on_step(step, len(pending), sum(req.batch.impact_location.size for _, req in order))
         outcomes = engine.solve_many([req.job() for _, req in order])
         answers: dict[int, list[Solved]] = {i: [] for i in pending}
         for (i, req), out in zip(order, outcomes, strict=True):
@@ -202,11 +209,13 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
 
 
 def run_protocols(jobs: list[tuple[BuiltBat, ProtocolSpec, BallSpec]], engine: Engine,
-                  created: str | None = None) -> list[RunResult]:
+                  created: str | None = None,
+                  on_step: Callable[[int, int, int], None] | None = None) -> list[RunResult]:
     """:func:`run_protocol` for several (bat, protocol, ball) at once, their engine batches
     solved together (:func:`drive`); the results are the same as one at a time."""
     stamp = created or _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
-    return drive([protocol_steps(b, p, ball, engine, stamp) for b, p, ball in jobs], engine)
+    return drive([protocol_steps(b, p, ball, engine, stamp) for b, p, ball in jobs], engine,
+                 on_step)
 
 
 def protocol_steps(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine: Engine,
@@ -229,9 +238,9 @@ def protocol_steps(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engi
     values = metric.value(final)[:, 0]
     value = aggregate.combine(values)
     margin, verdict = decide(value, p.limit)
-    inputs = [InputFile("bat", built.spec.name, built.spec.path, built.spec.sha256),
-              InputFile("protocol", p.id, p.path, p.sha256),
-              InputFile("ball", ball.name, ball.path, ball.sha256)]
+    inputs = [InputFile("bat", built.spec.name, display_path(built.spec.path), built.spec.sha256),
+              InputFile("protocol", p.id, display_path(p.path), p.sha256),
+              InputFile("ball", ball.name, display_path(ball.path), ball.sha256)]
     return RunResult(
         protocol=p.id, protocol_title=p.title, protocol_version=p.version,
         protocol_reference=p.reference, protocol_notes=p.notes or "", bat=built.spec.name,

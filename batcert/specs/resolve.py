@@ -32,11 +32,23 @@ def shipped_dirs(kind: str) -> list[Path]:
 
 
 def shipped_names(kind: str) -> dict[str, Path]:
+    """Shipped files of ``kind`` by name. The studies' folder also holds the protocols a study
+    uses; only the studies (a top-level ``protocols:`` list) count as studies."""
     names: dict[str, Path] = {}
     for d in shipped_dirs(kind):
         for p in sorted(d.glob("*.yaml")):
+            if kind == "study" and not _top_level_key(p, "protocols"):
+                continue
             names.setdefault(p.stem, p)
     return names
+
+
+def _top_level_key(path: Path, key: str) -> bool:
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError:
+        return False
+    return any(line.startswith(f"{key}:") for line in text.splitlines())
 
 
 class NotFound(LookupError):
@@ -61,3 +73,16 @@ def resolve(kind: str, value: str, relative_to: Path | None = None) -> Path:
     close = difflib.get_close_matches(value, list(names), n=1, cutoff=0.5)
     hint = f"; did you mean '{close[0]}'?" if close else ""
     raise NotFound(f"unknown {kind} {value!r} (shipped: {', '.join(names) or 'none'}){hint}")
+
+
+def display_path(path: str | Path) -> str:
+    """How reports name an input file: ``shipped:protocols/proposed.yaml`` for a file that
+    ships with batcert (wherever it is installed), else the path as given."""
+    p = Path(path).resolve()
+    for root in (_PACKAGE / "shipped", _CHECKOUT):
+        for subs in KINDS.values():
+            for sub in subs:
+                base = (root / sub).resolve()
+                if p.parent == base and base.is_dir():
+                    return f"shipped:{sub}/{p.name}"
+    return str(path)

@@ -61,7 +61,9 @@ def test_input_hashes_match_files(result, written):
     md = written["md"].read_text(encoding="utf-8")
     assert {f.role for f in result.inputs} == {"bat", "protocol", "ball"}
     for f in result.inputs:
-        path = Path(f.path) if Path(f.path).is_absolute() else REPO / f.path
+        # shipped inputs are named as shipped:<folder>/<file>, user files by their path
+        path = (REPO / f.path.removeprefix("shipped:") if f.path.startswith("shipped:")
+                else Path(f.path) if Path(f.path).is_absolute() else REPO / f.path)
         assert f.sha256 == hashlib.sha256(path.read_bytes()).hexdigest()
         assert f"<code>{f.sha256}</code>" in html
         assert f"`{f.sha256}`" in md

@@ -52,15 +52,11 @@ def _guard(func):
         from batcert.engines import EngineUnavailable
         from batcert.errors import UsageProblem
         from batcert.reports.write import OutputError
-        from batcert.runner.runner import ProtocolError
         from batcert.specs.resolve import NotFound
         try:
             return func(*args, **kwargs)
         except InputError as exc:
             console.input_error(exc.render())
-            sys.exit(3)
-        except ProtocolError as exc:
-            console.error(str(exc))
             sys.exit(3)
         except (NotFound, EngineUnavailable, UsageProblem) as exc:
             raise click.UsageError(str(exc)) from None

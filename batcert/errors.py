@@ -24,12 +24,28 @@ class Problem:
         where = f"{self.file}:{self.line}" if self.line else self.file
         head = f"{where}: {self.field}: {self.message}" if self.field else f"{where}: {self.message}"
         if source_lines and self.line and 0 < self.line <= len(source_lines):
-            text = source_lines[self.line - 1].rstrip("\n")
+            text, column = _excerpt(source_lines[self.line - 1].rstrip("\n"), self.column)
             gutter = f"{self.line:>5} | "
             head += f"\n{gutter}{text}"
-            if self.column:
-                head += "\n" + " " * (len(gutter) - 2) + "| " + " " * (self.column - 1) + "^"
+            if column:
+                head += "\n" + " " * (len(gutter) - 2) + "| " + " " * (column - 1) + "^"
         return head
+
+
+QUOTE_WIDTH = 100  # characters of a source line quoted under a problem
+
+
+def _excerpt(text: str, column: int | None) -> tuple[str, int | None]:
+    """A long source line cut to :data:`QUOTE_WIDTH` characters around ``column`` (with "..."
+    where cut), control characters shown as "?"; the caret's column in the excerpt."""
+    text = "".join(c if c.isprintable() or c == "\t" else "?" for c in text)
+    if len(text) <= QUOTE_WIDTH:
+        return text, column
+    start = max(0, min((column or 1) - 1 - QUOTE_WIDTH // 2, len(text) - QUOTE_WIDTH))
+    piece = text[start:start + QUOTE_WIDTH]
+    lead = "..." if start > 0 else ""
+    tail = "..." if start + QUOTE_WIDTH < len(text) else ""
+    return lead + piece + tail, (column - start + len(lead)) if column else None
 
 
 @dataclass
@@ -45,12 +61,13 @@ class InputError(Exception):
         sources: dict[str, list[str] | None] = {}
         out = []
         for p in self.problems:
-            if p.file not in sources:
+            if p.file not in sources and p.line:
                 try:
-                    sources[p.file] = Path(p.file).read_text(encoding="utf-8").splitlines()
+                    sources[p.file] = Path(p.file).read_text(encoding="utf-8-sig",
+                                                         errors="replace").splitlines()
                 except (OSError, UnicodeDecodeError):
                     sources[p.file] = None
-            out.append(p.render(sources[p.file]))
+            out.append(p.render(sources.get(p.file)))
         n = len(self.problems)
         files = sorted({p.file for p in self.problems})
         summary = f"{n} problem{'s' if n != 1 else ''} in {', '.join(files)}"

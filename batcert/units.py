@@ -6,6 +6,7 @@ knows unit strings. Parsing uses pint; the registry is created lazily on first u
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 from functools import lru_cache
@@ -49,6 +50,22 @@ FAST_UNITS: dict[str, dict[str, float]] = {
 }
 
 
+# The largest magnitude (SI) accepted for each dimension: far beyond any bat, ball or test, so
+# that only a typo or a hostile value (1e308 mph, inf) is refused. Documented in docs/inputs.md.
+PLAUSIBLE: dict[str, float] = {
+    "length": 10.0,  # m
+    "mass": 100.0,  # kg
+    "moi": 100.0,  # kg*m^2
+    "speed": 300.0,  # m/s (about 670 mph)
+    "angular_speed": 2000.0,  # rad/s
+    "density": 30000.0,  # kg/m^3 (osmium is 22,600)
+    "modulus": 2e12,  # Pa (diamond is about 1.2e12)
+    "time": 3600.0,  # s
+    "frequency": 1e6,  # Hz
+    "force": 1e7,  # N
+}
+
+
 class UnitError(ValueError):
     """A quantity that could not be parsed or has the wrong dimension."""
 
@@ -81,7 +98,7 @@ def parse_quantity(value: object, dimension: str) -> float:
         raise UnitError(f"a unit is required (e.g. '{example}'), got {value!r}")
     fast = FAST_UNITS.get(dimension, {}).get(unit_text.replace(" ", ""))
     if fast is not None:  # the units of the shipped files, without starting pint (~0.4 s)
-        return number * fast
+        return _plausible(number * fast, value, dimension)
     import pint
 
     ureg = registry()
@@ -102,6 +119,16 @@ def parse_quantity(value: object, dimension: str) -> float:
             f"{value!r} is not a {dimension.replace('_', ' ')} (expected units like '{example}')"
         ) from None
     _check_angle(value, unit, dimension, example)
+    return _plausible(si, value, dimension)
+
+
+def _plausible(si: float, value: str, dimension: str) -> float:
+    """``si`` if it is finite and within :data:`PLAUSIBLE`; otherwise a :class:`UnitError`."""
+    bound = PLAUSIBLE[dimension]
+    if not math.isfinite(si) or abs(si) > bound:
+        raise UnitError(f"{value!r} is outside the range accepted for a "
+                        f"{dimension.replace('_', ' ')} (at most {bound:g} {DIMENSIONS[dimension][1]} "
+                        "in size)")
     return si
 
 

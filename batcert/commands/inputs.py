@@ -50,8 +50,7 @@ def protocol_ball_path(protocol: ProtocolSpec) -> Path:
     try:
         return resolve("ball", protocol.ball, relative_to=Path(protocol.path))
     except NotFound as exc:
-        raise protocol.source.problem(".".join(map(str, protocol.origin + ("ball",))),
-                                      str(exc)) from None
+        raise protocol.problem("ball", str(exc)) from None
 
 
 def protocol_inputs(protocol: ProtocolSpec) -> ProtocolInputs:
@@ -74,6 +73,25 @@ def load_league_any(value: str) -> LeagueSpec:
     from batcert.specs.league import load_league  # not on a run's path
 
     return load_league(resolve("league", value))
+
+
+def league_protocols(spec: LeagueSpec) -> dict[str, ProtocolInputs]:
+    """The protocol (with its ball) of each modelled performance rule, by rule id; a name or
+    path that does not resolve is invalid input at the rule's ``protocol:`` line."""
+    out: dict[str, ProtocolInputs] = {}
+    for i, rule in enumerate(spec.rules):
+        if rule.kind == "performance" and rule.status == "modelled" and rule.protocol:
+            try:
+                path = resolve("protocol", rule.protocol, relative_to=Path(spec.path))
+            except NotFound as exc:
+                raise spec.source.problem(f"rules[{i}].protocol", str(exc)) from None
+            out[rule.id] = protocol_inputs(load_protocol(path))
+    return out
+
+
+def study_inputs(spec: StudySpec) -> tuple[list[ProtocolInputs], list[LoadedBat]]:
+    """A study's protocols with their balls, and its default bats, loaded and built."""
+    return [protocol_inputs(p) for p in spec.protocols], load_bats([str(b) for b in spec.bats])
 
 
 def same_file(a: Path, b: Path) -> bool:

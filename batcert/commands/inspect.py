@@ -7,9 +7,10 @@ from dataclasses import asdict
 import numpy as np
 
 from batcert.conventions import DEFAULT_PIVOT
+from batcert.errors import UsageProblem
 from batcert.model.build import BuiltBat
 from batcert.model.diagnostics import bat_dynamics
-from batcert.model.mass import mass_properties
+from batcert.model.mass import mass_properties, pivot_problem
 from batcert.specs.ball import BallSpec
 
 
@@ -17,8 +18,13 @@ def inspect_bat(built: BuiltBat, pivot: float | None = None, with_modes: bool = 
     """Mass properties (SI) about the pivot (default: the measured pivot, else 6 in), the COP
     (Smith 2001 Eq. 4), and when available the free-free bending modes."""
     m = built.model
-    if pivot is None:
+    wrong = pivot_problem(built.model, pivot) if pivot is not None else None
+    if wrong:
+        raise UsageProblem(f"--pivot: {wrong}")
+    if pivot is None:  # the measured pivot, unless it is no test pivot (e.g. beyond the CG)
         pivot = built.measured.pivot if built.measured else DEFAULT_PIVOT
+        if pivot_problem(built.model, pivot):
+            pivot = DEFAULT_PIVOT
     mp = mass_properties(built, pivot)
     info = {
         "name": built.spec.name, "file": built.spec.path, "sha256": built.spec.sha256,

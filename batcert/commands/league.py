@@ -4,10 +4,9 @@ protocol (once per bat and protocol). Every input is loaded before anything runs
 from __future__ import annotations
 
 from dataclasses import replace
-from pathlib import Path
 
 from batcert.analysis.league import bat_facts, evaluate_league, needs_run
-from batcert.commands.inputs import ProtocolInputs, load_bats, load_league_any, load_protocol_any
+from batcert.commands.inputs import ProtocolInputs, league_protocols, load_bats, load_league_any
 from batcert.engines import get_engine
 from batcert.results.league import LeagueResult
 from batcert.results.run import RunResult
@@ -21,10 +20,7 @@ def run_league(league: str, bats: list[str], engine: str = "flexible",
     spec = load_league_any(league)
     loaded = load_bats(bats)
     facts = [replace(bat_facts(b.built), path=display_path(b.built.spec.path)) for b in loaded]
-    protocols: dict[str, ProtocolInputs] = {}
-    for rule in spec.rules:  # load every protocol before running anything
-        if rule.kind == "performance" and rule.status == "modelled" and rule.protocol:
-            protocols[rule.id] = load_protocol_any(rule.protocol, relative_to=Path(spec.path))
+    protocols = league_protocols(spec)  # every protocol loaded before anything runs
     needed = any(needs_run(r, f) for r in spec.rules for f in facts)
     eng = get_engine(engine) if needed else None
     # every (bat, protocol) the rules need, once, all solved together

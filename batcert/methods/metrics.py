@@ -15,6 +15,8 @@ import numpy as np
 
 from batcert.physics import rigid
 
+# a dimensionless metric (BBCOR, BESR, BPF, e_A) and any limit on one lie within +-METRIC_BOUND
+METRIC_BOUND = 10.0
 
 @dataclass(frozen=True)
 class ImpactMetrics:

@@ -6,6 +6,20 @@ from batcert.model.build import BuiltBat
 from batcert.physics import rigid
 from batcert.results.run import MassProperties
 
+CLEARANCE = 0.01  # [m] the pivot, the CG, impacts and bat-speed stations keep this far apart
+
+
+def pivot_problem(model, pivot: float) -> str | None:
+    """Why ``pivot`` [m from the knob] cannot be a test pivot of ``model``, or None. A pivot
+    must lie on the bat, on the handle side of the CG and :data:`CLEARANCE` from it: at the
+    CG the centre of percussion (Smith 2001 Eq. 4) is at infinity, beyond it the bat recoils
+    the wrong way."""
+    if 0 <= pivot < model.balance_point - CLEARANCE:
+        return None
+    return (f"the pivot ({pivot * 100:.1f} cm from the knob) must lie on the bat on the handle "
+            f"side of its CG ({model.balance_point * 100:.1f} cm from the knob), at least "
+            f"{CLEARANCE * 100:.0f} cm from it")
+
 
 def mass_properties(built: BuiltBat, pivot: float) -> MassProperties:
     """Mass, CG, MOI and centre of percussion (Smith 2001 Eq. 4) about ``pivot`` [m from knob]

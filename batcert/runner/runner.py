@@ -17,24 +17,21 @@ import numpy as np
 
 from batcert import __version__
 from batcert.engines.base import Engine, ImpactBatch, ImpactOutcome
+from batcert.errors import Collector, InputError, Problem
 from batcert.methods.metrics import AGGREGATES, METRICS, ImpactMetrics, impact_metrics
 from batcert.methods.rules import IMPACT_RULES, Choice
 from batcert.model.build import BuiltBat
 from batcert.model.diagnostics import bat_dynamics
-from batcert.model.mass import mass_properties
+from batcert.model.mass import CLEARANCE, mass_properties, pivot_problem
 from batcert.physics import rigid
-from batcert.physics.batmodel import BatModel
 from batcert.results.run import BarrelRange, ConditionResult, InputFile, MassProperties, RunResult, Sweep
 from batcert.runner.barrel_range import barrel_range_steps
 from batcert.runner.conditions import Condition, conditions_from_spec
 from batcert.runner.locate import Search, locate_steps
 from batcert.specs.ball import BallSpec
+from batcert.specs.common import split_field
 from batcert.specs.protocol import LimitSpec, ProtocolSpec
 from batcert.specs.resolve import display_path
-
-
-class ProtocolError(ValueError):
-    """The protocol cannot be applied to this bat (e.g. the window lies outside it)."""
 
 
 @dataclass(frozen=True)
@@ -122,22 +119,62 @@ def drive(runs: list[Steps], engine: Engine,
     return values
 
 
-def check_applicable(protocol: ProtocolSpec, bat: BatModel) -> None:
-    """The pivot must lie on the bat and the search window between the pivot and the tip."""
-    pivot, window = protocol.pivot, protocol.impact_location.window
-    if not 0 <= pivot < bat.length:
-        raise ProtocolError(f"the pivot ({pivot * 100:.1f} cm from the knob) is not on the bat")
-    if window[1] >= bat.length - pivot:
-        raise ProtocolError(f"the search window reaches {window[1] * 100:.1f} cm from the tip, "
-                            f"beyond the pivot of this {bat.length * 100:.1f} cm bat")
+def check_applicable(protocol: ProtocolSpec, built: BuiltBat) -> None:
+    """The protocol fits the bat, or an :class:`InputError` naming every protocol field that
+    does not (with the protocol file's lines): the pivot lies on the handle side of the bat's
+    CG, the search window, a fixed impact point and every bat-speed station lie between the
+    pivot and the tip, at least :data:`CLEARANCE` from the pivot."""
+    p, bat = protocol, built.model
+    errors = Collector(p.path)
+    on = f"bat {built.spec.name!r} ({bat.length * 100:.1f} cm, CG {bat.balance_point * 100:.1f} " \
+         "cm from the knob)"
+    reach = bat.length - p.pivot - CLEARANCE  # farthest from the tip an impact may be [m]
+
+    def add(field_: str, message: str) -> None:
+        errors.add(p.line(*split_field(field_)), p.field(field_), f"{message}, for {on}")
+
+    wrong = pivot_problem(bat, p.pivot)
+    if wrong:
+        add("pivot", wrong)
+        errors.raise_if_any()  # every other check measures from the pivot
+    loc = p.impact_location
+    if loc.rule == "fixed-from-tip" and loc.from_tip is not None and loc.from_tip >= reach:
+        add("impact_location.from_tip", f"the impact point ({loc.from_tip * 100:.1f} cm from "
+            f"the tip) must be at least {CLEARANCE * 100:.0f} cm short of the pivot "
+            f"({(bat.length - p.pivot) * 100:.1f} cm from the tip)")
+    elif loc.window[1] >= reach:
+        add("impact_location.window", f"the search window reaches {loc.window[1] * 100:.1f} cm "
+            f"from the tip: it must end at least {CLEARANCE * 100:.0f} cm short of the pivot "
+            f"({(bat.length - p.pivot) * 100:.1f} cm from the tip)")
+    for i, c in enumerate(p.conditions):
+        if c.bat_speed_from_tip is not None and c.bat_speed_from_tip >= reach:
+            add(f"conditions[{i}].bat_speed_from_tip", f"the bat speed is given "
+                f"{c.bat_speed_from_tip * 100:.1f} cm from the tip, at or beyond the pivot "
+                f"({(bat.length - p.pivot) * 100:.1f} cm from the tip): it has no lever arm")
+    errors.raise_if_any()
 
 
-def _check_on_bat(choice: Choice, rule: str, tip: float) -> None:
+def _check_on_bat(choice: Choice, rule: str, tip: float, protocol: ProtocolSpec) -> None:
     off = (choice.location <= 0) | (choice.location >= tip)
     if np.any(off):
         bad = float(choice.location[np.argmax(off)])
-        raise ProtocolError(f"the {rule} impact point ({bad * 100:.1f} cm from the pivot) is "
-                            f"not between the pivot and the tip ({tip * 100:.1f} cm)")
+        raise protocol.problem("impact_location.rule", f"the {rule} impact point "
+                               f"({bad * 100:.1f} cm from the pivot) is not between the pivot "
+                               f"and the tip ({tip * 100:.1f} cm) of this bat")
+
+
+def _check_finite(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, final: ImpactMetrics,
+                  diag: dict[str, np.ndarray]) -> None:
+    """The last line of defence against a degenerate input that passed every range check: a
+    non-finite exit speed, metric or contact diagnostic is an input error, never a report."""
+    numbers = [final.exit_speed, final.bat_angular_speed_after, final.cor]
+    numbers += [v for k, v in diag.items() if k in ("contact_time", "peak_force")]
+    if all(np.all(np.isfinite(np.asarray(v, float))) for v in numbers):
+        return
+    raise InputError([Problem(built.spec.path, None, "", "the engine found no finite solution "
+                              f"for this bat with protocol {protocol.id!r} and ball "
+                              f"{ball.name!r}: the bat or the ball is outside what the model "
+                              "can represent (check its geometry, material and masses)")])
 
 
 def _scalars(diag: dict[str, np.ndarray], i: int) -> dict[str, Any]:
@@ -203,7 +240,7 @@ def run_protocol(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine
                  created: str | None = None) -> RunResult:
     """Run ``protocol`` on ``built`` with ``ball`` and ``engine``: the located impacts, every
     metric per condition, the aggregated metric, its margin and verdict, and the engine's and
-    the bat's diagnostics. Raises :class:`ProtocolError` when the protocol does not fit the bat.
+    the bat's diagnostics. Raises :class:`~batcert.errors.InputError` when the protocol does not fit the bat.
     """
     return run_protocols([(built, protocol, ball)], engine, created)[0]
 
@@ -222,7 +259,7 @@ def protocol_steps(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engi
                    created: str) -> Steps:
     """The steps of :func:`run_protocol` (a generator for :func:`drive`)."""
     p, bat = protocol, built.model
-    check_applicable(p, bat)
+    check_applicable(p, built)
     conds = conditions_from_spec(p.conditions, bat.length, p.pivot)
     bench = Bench(built, ball, engine, p.pivot, p.support)
     mp = mass_properties(built, p.pivot)
@@ -231,11 +268,12 @@ def protocol_steps(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engi
     search: Search = yield from locate_steps(bench, conds, p.impact_location, metric,
                                              rule.needs_metric_peak, mp.cop)
     choice = rule.choose(search.peaks)
-    _check_on_bat(choice, rule.name, search.peaks.tip)
+    _check_on_bat(choice, rule.name, search.peaks.tip, p)
     aggregate = AGGREGATES[p.aggregate]
     (final, diag), barrel = yield from _final_steps(bench, conds, choice.location, metric,
                                                      aggregate, p.limit)
     values = metric.value(final)[:, 0]
+    _check_finite(built, p, ball, final, diag)
     value = aggregate.combine(values)
     margin, verdict = decide(value, p.limit)
     inputs = [InputFile("bat", built.spec.name, display_path(built.spec.path), built.spec.sha256),

@@ -54,15 +54,18 @@ CONTACT_SCHEMA = Schema("contact law", (
     Field("model", choice("power-law-hysteresis"), "Contact law (Nathan 2000): compression "
           "F = k1 u^alpha, restitution F = k2 u^beta, beta = (1 + alpha)/e^2 - 1.",
           default="power-law-hysteresis"),
-    Field("k1", number(exclusive_minimum=0.0), "Compression stiffness [N/m^alpha].", required=True),
+    Field("k1", number(minimum=1e3, maximum=1e12), "Compression stiffness [N/m^alpha].",
+          required=True),
     Field("alpha", number(minimum=1.0, maximum=3.0), "Compression exponent.", required=True),
 ))
 
 BALL_SCHEMA = Schema("ball", (
     Field("name", text(), "Ball name shown in reports.", required=True),
     *HEADER_FIELDS,
-    Field("mass", quantity("mass", positive=True), "Ball mass.", required=True),
-    Field("radius", quantity("length", positive=True), "Ball radius.", required=True),
+    Field("mass", quantity("mass", minimum=0.02, maximum=1.0), "Ball mass (20-1000 g).",
+          required=True),
+    Field("radius", quantity("length", minimum=0.02, maximum=0.1), "Ball radius (20-100 mm).",
+          required=True),
     Field("cor", _cor_points(), "Rigid-wall COR at one or more impact speeds; piecewise linear "
           "in speed between points, constant beyond the first and last.", required=True),
     Field("contact", section(CONTACT_SCHEMA), "Contact law parameters.", required=True),

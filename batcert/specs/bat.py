@@ -33,11 +33,12 @@ from batcert.units import to_us
 
 MATERIAL_SCHEMA = Schema("inline material", (
     Field("name", text(), "Label shown in reports.", default="custom"),
-    Field("density", quantity("density", positive=True), "Density.", required=True),
-    Field("youngs_modulus", quantity("modulus", positive=True), "Young's modulus along the bat.",
-          required=True),
-    Field("shear_modulus", quantity("modulus", positive=True), "Shear modulus (transverse shear).",
-          required=True),
+    Field("density", quantity("density", minimum=100.0, maximum=20000.0), "Density "
+          "(100-20,000 kg/m^3: balsa to tungsten).", required=True),
+    Field("youngs_modulus", quantity("modulus", minimum=1e8, maximum=1e12), "Young's modulus "
+          "along the bat (0.1-1000 GPa).", required=True),
+    Field("shear_modulus", quantity("modulus", minimum=1e7, maximum=1e12), "Shear modulus "
+          "(transverse shear; 0.01-1000 GPa).", required=True),
     Field("poisson_ratio", number(minimum=0.0, maximum=0.5), "Poisson's ratio (hoop stiffness of "
           "hollow barrels).", default=0.3),
     Field("loss_factor", number(minimum=0.0, maximum=0.5), "Structural loss factor eta; modal "
@@ -95,7 +96,8 @@ COMPRESSION_SCHEMA = Schema("barrel compression test", (
 MEASURED_SCHEMA = Schema("measured properties", (
     Field("pivot", quantity("length", minimum=0.0), "Pivot of the MOI (and origin of `cg`), "
           "from the knob end.", default=DEFAULT_PIVOT),
-    Field("mass", quantity("mass", positive=True), "Measured mass.", required=True),
+    Field("mass", quantity("mass", minimum=0.1, maximum=3.0), "Measured mass (0.1-3 kg).",
+          required=True),
     Field("balance_point", quantity("length", positive=True), "CG from the knob end (F2398 "
           "balance point)."),
     Field("cg", quantity("length", positive=True), "CG from the pivot (alternative to "
@@ -129,10 +131,15 @@ def _check_bat(v: dict, data: Located, errors: Collector, path: str) -> None:
         if v["construction"] == "solid" and measured.get(key) is not None:
             errors.add(lookup(data, "measured", key)[0], f"measured.{key}", "only a hollow bat "
                        "has a barrel to measure")
+    on_bat = f"stations must lie between the knob (0) and the tip " \
+             f"({to_us(v['length'], 'length'):.2f} in)"
     z, d = v["profile"]
     if z[-1] > v["length"] * (1 + 1e-9) or z[0] < 0:
-        errors.add(lookup(data, "profile")[0], "profile", f"stations must lie between the knob "
-                   f"(0) and the tip ({to_us(v['length'], 'length'):.2f} in)")
+        errors.add(lookup(data, "profile")[0], "profile", on_bat)
+    if isinstance(v["wall"], tuple):
+        wz, _ = v["wall"]
+        if wz[-1] > v["length"] * (1 + 1e-9) or wz[0] < 0:
+            errors.add(lookup(data, "wall")[0], "wall", on_bat)
 
 
 BAT_SCHEMA = Schema("bat", (
@@ -140,25 +147,31 @@ BAT_SCHEMA = Schema("bat", (
     *HEADER_FIELDS,
     Field("construction", choice("solid", "hollow"), "Solid (wood) or hollow (metal, composite) "
           "barrel.", required=True),
-    Field("length", quantity("length", positive=True), "Overall length, knob end to tip.",
-          required=True),
-    Field("profile", pairs("length", "length", "position from knob", "outer diameter", min_items=2),
+    Field("length", quantity("length", minimum=0.3, maximum=1.5), "Overall length, knob end "
+          "to tip (0.3-1.5 m).", required=True),
+    Field("profile", pairs("length", "length", "position from knob", "outer diameter", min_items=2,
+                           second_range=(0.005, 0.15)),
           "Outer diameter at stations from the knob end, interpolated linearly; held constant "
-          "beyond the first and last station.", required=True),
-    Field("wall", one_of(quantity("length", positive=True),
-                         pairs("length", "length", "position from knob", "wall thickness"),
+          "beyond the first and last station (5-150 mm).", required=True),
+    Field("wall", one_of(quantity("length", minimum=1e-4, maximum=0.02),
+                         pairs("length", "length", "position from knob", "wall thickness",
+                               second_range=(1e-4, 0.02)),
                          describe="a thickness or a list of [position, thickness] pairs"),
-          "Wall thickness of a hollow bat: constant, or per station (interpolated)."),
+          "Wall thickness of a hollow bat: constant, or per station (interpolated; "
+          "0.1-20 mm)."),
     Field("material", _material_kind(), "Material: library name or inline properties.",
           required=True),
-    Field("knob_mass", quantity("mass", minimum=0.0), "Extra mass at the knob end.", default=0.0),
-    Field("end_cap_mass", quantity("mass", minimum=0.0), "Extra mass at the tip (end cap).",
-          default=0.0),
-    Field("shear_correction", number(exclusive_minimum=0.0, maximum=1.5), "Timoshenko shear "
+    Field("knob_mass", quantity("mass", minimum=0.0, maximum=1.0), "Extra mass at the knob end "
+          "(at most 1 kg).", default=0.0),
+    Field("end_cap_mass", quantity("mass", minimum=0.0, maximum=1.0), "Extra mass at the tip "
+          "(end cap; at most 1 kg).", default=0.0),
+    Field("shear_correction", number(minimum=0.1, maximum=1.5), "Timoshenko shear "
           "coefficient kappa; default 6(1+nu)/(7+6nu) solid, 2(1+nu)/(4+3nu) hollow."),
     Field("barrel_end", choice("closed", "open"), "Hollow bats: the barrel's tip end is held "
           "round by its end cap (closed) or free to oval (open).", default="closed"),
-    Field("slice_length", quantity("length", positive=True, maximum=0.02), "Beam slice length.",
+    Field("slice_length", quantity("length", minimum=0.0025, maximum=0.02), "Beam slice "
+          "length. Finer than 2.5 mm is refused: results are converged at the default 10 mm "
+          "(docs/validation.md) and the cost grows with the square of the slice count.",
           default=0.01),
     Field("measured", section(MEASURED_SCHEMA), "What a lab measured: mass properties (the "
           "model is reconciled to match them exactly), frequencies and barrel compression (the "

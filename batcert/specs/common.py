@@ -87,7 +87,8 @@ def load_checked(path: str | Path, schema: Schema, data: Located) -> dict[str, A
 
 
 def pairs(first: str, second: str, first_name: str, second_name: str, *,
-          second_positive: bool = True, min_items: int = 1) -> Kind:
+          second_positive: bool = True, min_items: int = 1,
+          second_range: tuple[float, float] | None = None) -> Kind:
     """A list of ``[first, second]`` quantity pairs, e.g. ``[20 in, 2.61 in]`` (position, diameter).
 
     Returns two tuples (firsts, seconds); the firsts must increase strictly.
@@ -120,6 +121,12 @@ def pairs(first: str, second: str, first_name: str, second_name: str, *,
                 continue
             if second_positive and not y > 0:
                 errors.add(line, sub, f"{second_name} must be positive, got {item[1]}", col)
+                ok = False
+                continue
+            if second_range is not None and not second_range[0] <= y <= second_range[1]:
+                si = DIMENSIONS[second][1]
+                errors.add(line, sub, f"{second_name} must be {second_range[0]:g}-"
+                           f"{second_range[1]:g} {si}, got {item[1]}", col)
                 ok = False
                 continue
             if xs and not x > xs[-1]:

@@ -17,6 +17,7 @@ from typing import Any
 
 from batcert.analysis.league import RULE_KINDS
 from batcert.errors import Collector
+from batcert.methods.metrics import METRIC_BOUND
 from batcert.specs.common import Source, spec_from
 from batcert.specs.schema import (
     Field,
@@ -43,7 +44,8 @@ CONFIDENCE = ("H", "M", "L", "D")
 LIMIT_KINDS: dict[str, Kind] = {
     "length": quantity("length", positive=True),
     "number": number(),
-    "metric": one_of(number(), quantity("speed"), describe="a number, or a speed for an "
+    "metric": one_of(number(minimum=-METRIC_BOUND, maximum=METRIC_BOUND),
+                     quantity("speed", minimum=0.0), describe="a number, or a speed for an "
                      "exit-speed protocol"),
 }
 
@@ -125,7 +127,8 @@ RULE_SCHEMA = Schema("league rule", (
     Field("kind", choice(*RULE_KINDS), "What is checked (see the kinds table).", required=True),
     Field("limit", _raw(), "The limit; its type depends on kind (a length, a plain number for "
           "drop, a metric value for performance)."),
-    Field("tolerance", one_of(number(minimum=0.0), quantity("speed", minimum=0.0),
+    Field("tolerance", one_of(number(minimum=0.0, maximum=METRIC_BOUND),
+                              quantity("speed", minimum=0.0),
                               describe="a number, or a speed for exit-speed"),
           "Performance rules: added to the limit before the verdict, where the rule has one.",
           default=0.0),

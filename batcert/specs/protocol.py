@@ -12,10 +12,10 @@ from pathlib import Path
 from typing import Any
 
 from batcert.conventions import DEFAULT_PIVOT
-from batcert.errors import Collector
-from batcert.methods.metrics import AGGREGATES, METRICS
+from batcert.errors import Collector, InputError, Problem
+from batcert.methods.metrics import AGGREGATES, METRIC_BOUND, METRICS
 from batcert.methods.rules import IMPACT_RULES
-from batcert.specs.common import Source, load_checked, spec_from
+from batcert.specs.common import Source, load_checked, spec_from, split_field
 from batcert.specs.schema import (
     Field,
     Schema,
@@ -30,6 +30,8 @@ from batcert.specs.schema import (
     text,
 )
 from batcert.specs.yamlio import Located, load_yaml
+
+MIN_RESOLUTION = 5e-5  # [m] finest impact-location resolution accepted
 
 
 def _check_condition(v: dict, data: Located, errors: Collector, path: str) -> None:
@@ -56,6 +58,12 @@ def _check_condition(v: dict, data: Located, errors: Collector, path: str) -> No
         if v["stationary"] is not None:
             errors.add(lookup(data, "stationary")[0], f"{path}.stationary", "only used with "
                        "relative_speed")
+        bat_speed = v["bat_angular_speed"] if v["bat_angular_speed"] is not None \
+            else v["bat_speed"]
+        if v["pitch_speed"] == 0 and bat_speed == 0:
+            errors.add(lookup(data, "pitch_speed")[0], f"{path}.pitch_speed", "the ball and "
+                       "the bat are both at rest and never meet: give a pitch speed or a bat "
+                       "speed above zero")
         return
     if v["stationary"] is None and v["pitch_speed"] is None:
         errors.add(data.line, f"{path}.stationary", "relative_speed needs stationary: bat|ball, or "
@@ -91,24 +99,31 @@ def _check_location(v: dict, data: Located, errors: Collector, path: str) -> Non
     if v["window"] is not None and v["window"][0] >= v["window"][1]:
         errors.add(lookup(data, "window")[0], f"{path}.window", "give [nearest, farthest] "
                    "distance from the tip, nearest first")
+    elif v["window"] is not None and v["window"][1] - v["window"][0] < v["resolution"]:
+        errors.add(lookup(data, "window")[0], f"{path}.window", "the window is shorter than "
+                   f"the resolution ({v['resolution'] * 1000:g} mm)")
 
 
 LOCATION_SCHEMA = Schema("impact-location rule", (
     Field("rule", choice(*IMPACT_RULES), "; ".join(f"{r.name}: {r.doc}" for r in
                                                     IMPACT_RULES.values()) + ".", required=True),
-    Field("window", list_of(quantity("length", minimum=0.0), min_items=2,
+    Field("window", list_of(quantity("length", minimum=0.0), min_items=2, max_items=2,
                             describe="[nearest, farthest] distance from the tip"),
           "Search window as distances from the tip.", default=[0.03, 0.30]),
     Field("sweep_points", integer(minimum=5, maximum=2001), "Coarse sweep points over the window "
           "(the curve the reports plot; the peak is then refined to `resolution`).", default=36),
-    Field("resolution", quantity("length", positive=True), "Located to at least this.",
+    Field("resolution", quantity("length", minimum=MIN_RESOLUTION, maximum=0.05), "Located to "
+          "at least this. Finer than 0.05 mm is refused: the exit-speed curve is flat at its "
+          "peak (it changes by about 1e-8 of itself 0.05 mm away), so finer steps would locate "
+          "rounding, not the bat.",
           default=0.001),
     Field("from_tip", quantity("length", positive=True), "Impact distance from the tip for "
           "fixed-from-tip."),
 ), checks=(_check_location,))
 
 LIMIT_SCHEMA = Schema("limit", (
-    Field("max", one_of(number(), quantity("speed"), describe="a number, or a speed for "
+    Field("max", one_of(number(), quantity("speed", minimum=0.0), describe="a number, or a "
+                        "speed for "
                         "exit-speed"), "Largest passing value of the aggregated metric.",
           required=True),
     Field("tolerance", one_of(number(minimum=0.0), quantity("speed", minimum=0.0),
@@ -145,6 +160,9 @@ def _check_limit(v: dict, data: Located, errors: Collector, path: str) -> None:
         elif v["metric"] != "exit-speed" and not plain:
             errors.add(lookup(data, "limit", key)[0], f"limit.{key}", f"{v['metric']} is "
                        f"dimensionless: give a plain number, got {raw[key]!r}")
+        elif v["metric"] != "exit-speed" and abs(v["limit"][key]) > METRIC_BOUND:
+            errors.add(lookup(data, "limit", key)[0], f"limit.{key}", f"{v['metric']} limits "
+                       f"lie within +-{METRIC_BOUND:g}, got {raw[key]!r}")
 
 
 PROTOCOL_SCHEMA = Schema("protocol", (
@@ -237,6 +255,18 @@ class ProtocolSpec:
     def line(self, *keys: str | int) -> int | None:
         """Line of one of this protocol's keys in its file."""
         return self.source.line(*self.origin, *keys)
+
+    def field(self, dotted: str) -> str:
+        """The dotted name of one of this protocol's fields in its file (an inline protocol's
+        fields are under its place in the study file)."""
+        prefix = "".join(f"[{k}]" if isinstance(k, int) else f".{k}" for k in self.origin)
+        return (prefix.lstrip(".") + "." + dotted) if prefix else dotted
+
+    def problem(self, dotted: str, message: str) -> InputError:
+        """An :class:`InputError` at one of this protocol's fields (dotted, e.g.
+        ``"impact_location.window"``), with its line."""
+        return InputError([Problem(self.path, self.line(*split_field(dotted)),
+                                   self.field(dotted), message)])
 
 
 def protocol_from_values(values: dict[str, Any], source: Source,

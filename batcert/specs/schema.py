@@ -10,6 +10,7 @@ generate the field-by-field reference in ``docs/inputs.md``.
 from __future__ import annotations
 
 import difflib
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -17,6 +18,8 @@ from typing import Any
 from batcert.errors import Collector
 from batcert.specs.yamlio import Located, LocatedList, where
 from batcert.units import DIMENSIONS, UnitError, parse_quantity
+
+LARGEST_NUMBER = 1e15  # a plain number larger than this (or nan, inf) is refused
 
 
 class FieldError(ValueError):
@@ -132,7 +135,13 @@ def number(*, minimum: float | None = None, maximum: float | None = None,
                 pass
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise FieldError(f"expected a plain number, got {value!r}")
-        v = float(value)
+        try:
+            v = float(value)
+        except OverflowError:  # an integer too large for a float
+            v = math.inf
+        if not math.isfinite(v) or abs(v) > LARGEST_NUMBER:
+            raise FieldError(f"expected a finite number of reasonable size (at most "
+                             f"{LARGEST_NUMBER:g}), got {value!r}")
         if minimum is not None and v < minimum:
             raise FieldError(f"must be at least {minimum:g}, got {value}")
         if maximum is not None and v > maximum:
@@ -195,12 +204,17 @@ def section(schema: Schema) -> Kind:
     return Kind(f"mapping: {schema.title}", parse, schema=schema)
 
 
-def list_of(item: Kind, *, min_items: int = 0, describe: str | None = None) -> Kind:
+def list_of(item: Kind, *, min_items: int = 0, max_items: int | None = None,
+            describe: str | None = None) -> Kind:
     def parse(value: Any, errors: Collector, path: str) -> list:
         if not isinstance(value, LocatedList):
             raise FieldError(f"expected a list ({describe or item.describe})")
         if len(value) < min_items:
             raise FieldError(f"needs at least {min_items} item{'s' if min_items > 1 else ''}")
+        if max_items is not None and len(value) > max_items:
+            exactly = "exactly" if max_items == min_items else "at most"
+            raise FieldError(f"needs {exactly} {max_items} item{'s' if max_items > 1 else ''} "
+                             f"({describe or item.describe}), got {len(value)}")
         out = []
         for i, v in enumerate(value):
             sub = _join(path, i)

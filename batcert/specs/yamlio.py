@@ -35,15 +35,64 @@ def _pos(node: yaml.Node) -> tuple[int, int]:
     return node.start_mark.line + 1, node.start_mark.column + 1
 
 
-def _build(node: yaml.Node, file: str, constructor: yaml.SafeLoader, errors: Collector, path: str):
+# Bounds on what a spec file may hold. The shipped files are a few kilobytes, a few levels deep
+# and about a hundred values; these limits are far above any real bat or protocol and keep a
+# hostile file (an alias "billion laughs", a recursive alias, thousands of nested brackets, a
+# multi-megabyte file) from hanging or crashing the loader.
+MAX_BYTES = 2_000_000  # file size
+MAX_DEPTH = 32  # nested mappings and lists
+MAX_VALUES = 100_000  # keys, items and values after aliases are expanded
+
+
+class _Limit(Exception):
+    def __init__(self, node: yaml.Node, message: str):
+        self.node, self.message = node, message
+
+
+class _Walk:
+    """Budget and path of one :func:`_build` walk (for alias bombs and recursive aliases)."""
+
+    def __init__(self) -> None:
+        self.values = 0
+        self.path: set[int] = set()
+
+    def enter(self, node: yaml.Node, depth: int) -> None:
+        self.values += 1
+        if self.values > MAX_VALUES:
+            raise _Limit(node, f"more than {MAX_VALUES:,} values once aliases are expanded "
+                         "(an alias bomb?); a spec file needs a few hundred at most")
+        if depth > MAX_DEPTH:
+            raise _Limit(node, f"nested more than {MAX_DEPTH} levels deep")
+        if id(node) in self.path:
+            raise _Limit(node, "an alias that contains itself (recursive alias)")
+
+
+def _build(node: yaml.Node, file: str, constructor: yaml.SafeLoader, errors: Collector, path: str,
+           walk: _Walk | None = None, depth: int = 0):
+    walk = walk or _Walk()
+    walk.enter(node, depth)
+    if isinstance(node, (yaml.MappingNode, yaml.SequenceNode)):
+        walk.path.add(id(node))
+        try:
+            return _build_collection(node, file, constructor, errors, path, walk, depth)
+        finally:
+            walk.path.discard(id(node))
+    return constructor.construct_object(node)
+
+
+def _build_collection(node: yaml.Node, file: str, constructor: yaml.SafeLoader, errors: Collector,
+                      path: str, walk: _Walk, depth: int):
     if isinstance(node, yaml.MappingNode):
         out = Located()
         out.file, out.line = file, _pos(node)[0]
         out.key_pos, out.value_pos = {}, {}
         for key_node, value_node in node.value:
-            key = constructor.construct_object(key_node)
+            walk.enter(key_node, depth + 1)
+            key = constructor.construct_object(key_node) if isinstance(key_node, yaml.ScalarNode) \
+                else None
             if not isinstance(key, str):
-                errors.add(_pos(key_node)[0], path, f"keys must be text, got {key!r}", _pos(key_node)[1])
+                errors.add(_pos(key_node)[0], path, "keys must be text, got "
+                           f"{key!r}" if key is not None else "keys must be text", _pos(key_node)[1])
                 continue
             sub = f"{path}.{key}" if path else key
             if key in out:
@@ -52,7 +101,7 @@ def _build(node: yaml.Node, file: str, constructor: yaml.SafeLoader, errors: Col
                 continue
             out.key_pos[key] = _pos(key_node)
             out.value_pos[key] = _pos(value_node)
-            out[key] = _build(value_node, file, constructor, errors, sub)
+            out[key] = _build(value_node, file, constructor, errors, sub, walk, depth + 1)
         return out
     if isinstance(node, yaml.SequenceNode):
         seq = LocatedList()
@@ -60,21 +109,46 @@ def _build(node: yaml.Node, file: str, constructor: yaml.SafeLoader, errors: Col
         seq.item_pos = []
         for i, item in enumerate(node.value):
             seq.item_pos.append(_pos(item))
-            seq.append(_build(item, file, constructor, errors, f"{path}[{i}]"))
+            seq.append(_build(item, file, constructor, errors, f"{path}[{i}]", walk, depth + 1))
         return seq
-    return constructor.construct_object(node)
+    raise TypeError(f"not a collection: {node!r}")
 
 
 def load_yaml(path: str | Path) -> Located:
     """Read a YAML file whose top level is a mapping; raise :class:`InputError` on any problem."""
     file = str(path)
+    p = Path(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        if p.is_dir():
+            raise InputError([Problem(file, None, "", "is a directory; give a YAML file")])
+        with p.open("rb") as handle:
+            raw = handle.read(MAX_BYTES + 1)
     except FileNotFoundError:
         raise InputError([Problem(file, None, "", "file not found")]) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError([Problem(file, None, "", f"cannot read file: {exc}")]) from None
-    return load_yaml_text(text, file)
+    except OSError as exc:
+        raise InputError([Problem(file, None, "", f"cannot read file: {exc.strerror or exc}")]
+                         ) from None
+    if len(raw) > MAX_BYTES:
+        raise InputError([Problem(file, None, "", f"larger than {MAX_BYTES / 1e6:g} MB; a spec "
+                                  "file is a few kilobytes (is this the right file?)")])
+    return load_yaml_text(decode_text(raw, file), file)
+
+
+def decode_text(raw: bytes, file: str) -> str:
+    """UTF-8 text (a byte-order mark is allowed); a byte that is not UTF-8 is an error at its
+    line and column, naming the byte."""
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
+        raise InputError([Problem(file, 1, "", "UTF-16 text; save the file as UTF-8")])
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        start = exc.start
+        line = raw.count(b"\n", 0, start) + 1
+        col = start - (raw.rfind(b"\n", 0, start) + 1) + 1
+        byte = raw[start:start + 1].hex()
+        raise InputError([Problem(file, line, "", f"byte 0x{byte} is not UTF-8 text (a Latin-1 "
+                                  "or Windows-1252 file?); save the file as UTF-8", col)]
+                         ) from None
 
 
 _FAST_LOADER = getattr(yaml, "CSafeLoader", None)  # libyaml: ~10x faster to compose
@@ -97,6 +171,15 @@ def load_yaml_text(text: str, file: str) -> Located:
             # the pure-Python parser's messages are the documented ones (and the same
             # everywhere): parse again with it to report the problem
             node = _compose(text, yaml.SafeLoader)
+    except yaml.reader.ReaderError as exc:  # a control character such as NUL
+        line = text.count("\n", 0, exc.position) + 1
+        col = exc.position - (text.rfind("\n", 0, exc.position) + 1) + 1
+        what = f"U+{exc.character:04X}" if isinstance(exc.character, int) else repr(exc.character)
+        raise InputError([Problem(file, line, "", f"control character {what} is not allowed in "
+                                  "a YAML file", col)]) from None
+    except RecursionError:
+        raise InputError([Problem(file, None, "", f"nested too deeply (more than {MAX_DEPTH} "
+                                  "levels are refused)")]) from None
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark else None
@@ -119,6 +202,9 @@ def load_yaml_text(text: str, file: str) -> Located:
         mark = exc.problem_mark
         errors.add(mark.line + 1 if mark else None, "", f"malformed YAML: {exc.problem}")
         data = Located()
+    except _Limit as exc:
+        line, col = _pos(exc.node)
+        raise InputError([Problem(file, line, "", f"refused: {exc.message}", col)]) from None
     errors.raise_if_any()
     return data
 

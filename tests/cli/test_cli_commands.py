@@ -208,7 +208,9 @@ def test_protocol_error_exits_3(batcert_cli, tmp_path):
         "window: [2 in, 12 in]", "window: [2 in, 30 in]"))
     out = tmp_path / "reports"
     result = _run(batcert_cli, "-p", proto, "--out", out)
-    assert result.exit_code == 3 and "beyond the pivot" in result.stderr
+    assert result.exit_code == 3
+    assert "long-window.yaml:23: impact_location.window: the search window reaches 76.2 cm " \
+        "from the tip: it must end at least 1 cm short of the pivot" in result.stderr
     assert not out.exists()
 
 

@@ -12,10 +12,11 @@ import pytest
 
 from batcert.commands.inputs import load_bat_any, load_protocol_any
 from batcert.engines import ImpactBatch, get_engine
+from batcert.errors import InputError
 from batcert.physics import rigid
 from batcert.results.run import RunResult
 from batcert.runner.conditions import conditions_from_spec
-from batcert.runner.runner import ProtocolError, run_protocol
+from batcert.runner.runner import run_protocol
 
 REPO = Path(__file__).resolve().parents[2]
 IN = 0.0254  # [m]
@@ -313,7 +314,8 @@ def test_rigid_bpf_warning(ash):
 def test_window_beyond_the_pivot_is_refused(ash, protocol):
     inputs = protocol(TWO.replace("rule: fixed-from-tip\n  from_tip: 15 cm",
                                   "rule: sweet-spot\n  window: [3 cm, 80 cm]"))
-    with pytest.raises(ProtocolError, match="beyond the pivot"):
+    with pytest.raises(InputError, match=r":\d+: impact_location.window: the search window "
+                       "reaches 80.0 cm from the tip: it must end at least 1 cm short of the pivot"):
         run(ash, inputs)
 
 

@@ -29,7 +29,7 @@ CASES: dict[str, list[Expect]] = {
         Expect(4, "lenght", "unknown field; did you mean 'length'?"),
         Expect(2, "length", "required field is missing"),  # the misspelt key leaves it missing
     ],
-    "bat-negative-mass.yaml": [Expect(10, "measured.mass", "must be positive, got -906 g")],
+    "bat-negative-mass.yaml": [Expect(10, "measured.mass", "must be at least 0.1 kg, got -906 g")],
     "bat-bad-indentation.yaml": [Expect(7, "", "malformed YAML: mapping values are not allowed")],
     "bat-unclosed-bracket.yaml": [
         Expect(7, "", "malformed YAML: expected ',' or ']', but got '[' (while parsing a flow "

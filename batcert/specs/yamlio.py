@@ -172,11 +172,11 @@ def load_yaml_text(text: str, file: str) -> Located:
             # everywhere): parse again with it to report the problem
             node = _compose(text, yaml.SafeLoader)
     except yaml.reader.ReaderError as exc:  # a control character such as NUL
-        line = text.count("\n", 0, exc.position) + 1
-        col = exc.position - (text.rfind("\n", 0, exc.position) + 1) + 1
+        at = text.count("\n", 0, exc.position) + 1
+        col_at = exc.position - (text.rfind("\n", 0, exc.position) + 1) + 1
         what = f"U+{exc.character:04X}" if isinstance(exc.character, int) else repr(exc.character)
-        raise InputError([Problem(file, line, "", f"control character {what} is not allowed in "
-                                  "a YAML file", col)]) from None
+        raise InputError([Problem(file, at, "", f"control character {what} is not allowed in "
+                                  "a YAML file", col_at)]) from None
     except RecursionError:
         raise InputError([Problem(file, None, "", f"nested too deeply (more than {MAX_DEPTH} "
                                   "levels are refused)")]) from None

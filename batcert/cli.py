@@ -225,8 +225,7 @@ def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
 
     def show(results, written):
         if as_json:
-            data = [r.to_dict() for r in results]
-            console.print_json(data[0] if len(data) == 1 else data)
+            console.print_json({"results": [r.to_dict() for r in results]})
         else:
             for r, paths in zip(results, written, strict=True):
                 console.run_summary(r, paths)
@@ -348,16 +347,17 @@ def protocols(as_json):
 \b
 Examples:
   batcert validate bats/*.yaml protocols/*.yaml
-  batcert validate my-bat.yaml""")
+  batcert validate my-bat.yaml ncaa-bbcor""")
 @click.argument("files", nargs=-1, required=True, type=click.Path())
 def validate(files):
-    """Check spec files (bat, ball, protocol, league); report every problem of every file."""
-    from batcert.commands.validate import validate_file
+    """Check spec files (bat, ball, protocol, league, study; paths or shipped names) and the
+    files they name; report every problem of every file."""
+    from batcert.commands.validate import shipped_path, validate_file
     from batcert.specs.resolve import NotFound
     failed = False
     for f in files:
         try:
-            kind = validate_file(f)
+            kind = validate_file(shipped_path(f))
             console.note_out(f"ok  {f} ({kind})")
         except InputError as exc:
             console.input_error(exc.render())

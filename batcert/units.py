@@ -109,6 +109,7 @@ def parse_quantity(value: object, dimension: str) -> float:
                         f"(e.g. '{example}')") from None
     except Exception:  # pint's parser raises many types (e.g. tokenize.TokenError for "in)")
         raise UnitError(f"cannot read {value!r}: not a unit expression (e.g. '{example}')") from None
+    _check_spelling(value, unit_text, ureg, example)
     q = ureg.Quantity(number, unit)
     # pint treats radian as dimensionless, so rad/s, rpm, Hz and 1/s all match 1/[time]; the
     # angle check below keeps angular speeds (rad/s, rpm) and frequencies (Hz) apart
@@ -120,6 +121,21 @@ def parse_quantity(value: object, dimension: str) -> float:
         ) from None
     _check_angle(value, unit, dimension, example)
     return _plausible(si, value, dimension)
+
+
+def _check_spelling(value: str, unit_text: str, ureg, example: str) -> None:
+    """Refuse unit words that pint reads only by guessing: it strips any trailing "s", so
+    "36.9 inchs" would silently be 36.9 in. A word must be a unit's name, symbol or alias, or
+    its regular English plural ("inches", "meters", "grams")."""
+    for word in re.findall(r"[A-Za-z_]+", unit_text):
+        name = ureg.get_name(word)
+        unit = ureg._units.get(name)
+        spelled = {name, ureg.get_symbol(word), *(unit.aliases if unit is not None else ())}
+        plurals = {w + ("es" if w.endswith(("s", "sh", "ch", "x", "z")) else "s")
+                   for w in spelled}
+        prefixed = any(word.endswith(w) and len(word) > len(w) for w in spelled | plurals)
+        if word not in spelled | plurals and not prefixed:
+            raise UnitError(f"cannot read {value!r}: unknown unit {word!r} (e.g. '{example}')")
 
 
 def _plausible(si: float, value: str, dimension: str) -> float:

@@ -38,7 +38,22 @@ def inspect_bat(built: BuiltBat, pivot: float | None = None, with_modes: bool = 
     }
     if with_modes:
         info.update(bat_dynamics(built, pivot))
-    return info
+    return rounded(info)
+
+
+SIGNIFICANT = 6  # digits kept by inspect: more than the inputs (3-4 digits) or the engine carry
+
+
+def rounded(data, digits: int = SIGNIFICANT):
+    """Every float in ``data`` rounded to ``digits`` significant digits, so that printed numbers
+    show what they carry (0.429, not 0.4289999999999998)."""
+    if isinstance(data, float):
+        return float(f"{data:.{digits}g}") if np.isfinite(data) else data
+    if isinstance(data, dict):
+        return {k: rounded(v, digits) for k, v in data.items()}
+    if isinstance(data, (list, tuple)):
+        return [rounded(v, digits) for v in data]
+    return data
 
 
 def inspect_ball(ball: BallSpec, speeds=(1.0, 11.0, 25.9, 45.0, 58.0, 60.0, 67.0)) -> dict:
@@ -48,11 +63,11 @@ def inspect_ball(ball: BallSpec, speeds=(1.0, 11.0, 25.9, 45.0, 58.0, 60.0, 67.0
     from batcert.physics import contact
     b = ball.model
     wall = contact.ball_wall_impact(b, np.asarray(speeds, dtype=float))
-    return {"name": b.name, "file": ball.path, "sha256": ball.sha256, "mass": b.mass,
+    return rounded({"name": b.name, "file": ball.path, "sha256": ball.sha256, "mass": b.mass,
             "radius": b.radius, "contact_model": b.contact_model, "k1": b.k1, "alpha": b.alpha,
             "cor_points": [list(p) for p in zip(b.cor_speeds, b.cor_values, strict=True)],
             "speeds": list(map(float, speeds)), "cor": wall.cor.tolist(),
             "contact_time": wall.contact_time.tolist(),
             "collision_time": wall.collision_time.tolist(),
             "max_compression": wall.max_compression.tolist(),
-            "peak_force": wall.peak_force.tolist()}
+            "peak_force": wall.peak_force.tolist()})

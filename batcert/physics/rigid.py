@@ -369,6 +369,9 @@ def rigid_sweet_spot(moi_pivot, ball_mass, pitch_speed, bat_angular_speed):
     """
     w1 = np.asarray(bat_angular_speed, dtype=float)
     vp = np.asarray(pitch_speed, dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    c = moi_pivot / ball_mass
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         a = np.where(w1 != 0, vp / np.where(w1 != 0, w1, 1.0), np.nan)
-        return a + np.sqrt(moi_pivot / ball_mass + a**2)
+        root = np.hypot(np.sqrt(c), a)  # sqrt(c + a^2) without overflow for a slow swing
+        # a + root loses every digit when a << 0 (pitch speed >> swing): use c / (root - a)
+        return np.where(a < 0, c / (root - a), a + root)

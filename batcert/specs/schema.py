@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import unicodedata
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -179,7 +180,13 @@ def text() -> Kind:
     def parse(value: Any, errors: Collector, path: str) -> str:
         if isinstance(value, (Located, LocatedList)) or isinstance(value, bool):
             raise FieldError(f"expected text, got {type(value).__name__}")
-        return str(value)
+        out = str(value)
+        bad = next((c for c in out if c not in "\t\n" and unicodedata.category(c) in ("Cc", "Cs")),
+                   None)
+        if bad is not None:  # e.g. "\0" or a lone "\ud800" written as a YAML escape
+            raise FieldError(f"contains the character U+{ord(bad):04X}, which is not text (a "
+                             "control character or half of a surrogate pair)")
+        return out
 
     return Kind("text", parse)
 

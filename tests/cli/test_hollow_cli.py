@@ -69,7 +69,7 @@ def test_measured_hoop_frequency_calibrates_the_barrel(batcert_cli, tmp_path):
     assert barrel["calibrated"] is True and barrel["stiffness_scale"] < 1.0  # model: 1795 Hz
     result = batcert_cli("run", bat, "-p", "ncaa-bbcor", "--json")
     run = json.loads(result.stdout)
-    run = run["results"][0] if "results" in run else run
+    (run,) = run["results"]
     assert run["barrel"]["calibrated"] is True
     assert run["barrel"]["value_low"] is None and run["barrel"]["stiffness_scales"] == []
     assert not any("not calibrated" in w for w in run["warnings"])
@@ -80,10 +80,10 @@ def test_calibration_moves_the_result(batcert_cli, tmp_path):
     # uncalibrated range when the measured frequency lies inside the range's frequencies
     # (x0.8-x1.25 stiffness: 1605-2007 Hz for the model's 1795 Hz).
     nominal = json.loads(batcert_cli("run", "aluminium-34", "-p", "ncaa-bbcor", "--json").stdout)
-    nominal = nominal["results"][0] if "results" in nominal else nominal
+    (nominal,) = nominal["results"]
     soft = json.loads(batcert_cli("run", calibrated_bat(tmp_path, "1650 Hz"), "-p", "ncaa-bbcor",
                                   "--json").stdout)
-    soft = soft["results"][0] if "results" in soft else soft
+    (soft,) = soft["results"]
     assert soft["value"] != pytest.approx(nominal["value"], abs=1e-4)
     assert nominal["barrel"]["value_low"] <= soft["value"] <= nominal["barrel"]["value_high"]
 

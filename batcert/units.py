@@ -171,7 +171,7 @@ def _factor(si_unit: str, unit: str) -> float:
 
 
 # Conversion factors for display, so reports need not import pint (computed from Units section
-# of REFERENCE-DATA.md: 1 in = 0.0254 m, 1 mph = 0.44704 m/s, 1 oz = 28.3495 g).
+# of docs/references.md: 1 in = 0.0254 m, 1 mph = 0.44704 m/s, 1 oz = 28.3495 g).
 _US: dict[str, tuple[str, float]] = {
     "length": ("in", 1 / INCH),
     "mass": ("oz", 1 / OUNCE),

@@ -1,7 +1,7 @@
 """Calibrate the bat's stiffness to a measured first bending frequency.
 
 Handbook moduli of wood are static values; bats measure stiffer (Nathan 2000 tuned E to the
-R161's measured fundamental; REFERENCE-DATA.md, Materials). When a bat spec gives the measured
+R161's measured fundamental; docs/references.md, Materials). When a bat spec gives the measured
 free-free first bending frequency, the bending stiffness EI and the shear stiffness kappa G A are
 scaled by one factor ``s`` (keeping G/E), so every frequency scales with ``sqrt(s)`` and the
 fundamental matches exactly: ``s = (f_measured / f_model)^2``.

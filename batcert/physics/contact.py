@@ -74,7 +74,7 @@ def restitution_exponent(alpha, e0):
     Examples
     --------
     Nathan's ball at 58 m/s (alpha = 1.84, e0 = 0.53): beta = 2.84 / 0.2809 - 1 = 9.11
-    (REFERENCE-DATA.md, derived).
+    (docs/references.md, derived).
 
     >>> round(float(restitution_exponent(1.84, 0.53)), 2)
     9.11
@@ -159,7 +159,7 @@ def max_compression(speed, mass, k1, alpha):
     Examples
     --------
     Nathan's ball (0.145 kg, k1 = 6.53e7 N/m^1.84) against a rigid wall at 58 m/s compresses
-    17.7 mm (REFERENCE-DATA.md, derived):
+    17.7 mm (docs/references.md, derived):
 
     >>> round(float(max_compression(58.0, 0.145, 6.53e7, 1.84)) * 1e3, 1)
     17.7

@@ -28,6 +28,19 @@ def _nz(v: float) -> float:
     return v + 0.0  # turns -0.0 into 0.0
 
 
+def margin_text(margin: float, digits: int, unit: str = "") -> str:
+    """A signed margin at ``digits`` decimals, honest where rounding would hide it: exactly at
+    the limit is "0 (at the limit)", and a margin that rounds to zero but is not zero is
+    "+<0.0001" (or its negative), never "+0.0000" beside a value that differs from the limit."""
+    tail = f" {unit}" if unit else ""
+    if margin == 0:
+        return f"0{tail} (at the limit)"
+    step = 0.5 * 10.0**-digits
+    if abs(margin) < step:
+        return f"{'+' if margin > 0 else MINUS}<{10.0**-digits:.{digits}f}{tail}"
+    return signed(f"{margin:+.{digits}f}{tail}")
+
+
 # ---------------------------------------------------------------- registry words
 
 
@@ -66,6 +79,11 @@ def metric_value(value: float | None, metric: str, signed_: bool = False) -> Dis
         return Display(DASH, None)
     sign = "+" if signed_ else ""
     digits = METRICS[metric].digits if metric in METRICS else 4
+    if signed_ and metric == "exit-speed":
+        return Display(margin_text(value, digits, "m/s"),
+                       "0 mph" if value == 0 else margin_text(to_us(value, "speed"), 1, "mph"))
+    if signed_:
+        return Display(margin_text(value, digits), None)
     if metric == "exit-speed":
         return Display(signed(f"{_nz(value):{sign}.{digits}f} m/s"),
                        signed(f"{_nz(to_us(value, 'speed')):{sign}.1f} mph"))
@@ -121,6 +139,32 @@ def number(value: Any) -> str:
     return str(value)
 
 
+# The unit of every setting, diagnostic and correction a report lists (SI), by its flattened
+# name, else by its last part, else by its suffix; "" for text, flags and pure numbers.
+UNITS: dict[str, str] = {
+    "n_modes": "count", "refine": "count", "time_step": "s", "max_contact_time": "s",
+    "cor": "ratio", "start": "m from knob", "end": "m from knob", "outer_diameter": "m",
+    "wall": "m", "mass_change": "kg", "added_knob_mass": "kg", "added_end_cap_mass": "kg",
+    "model_compression_stiffness": "N/m", "measured_compression_stiffness": "N/m",
+}
+SUFFIX_UNITS = (("_hz", "Hz"), ("_scale", "ratio"), ("_weight_knob", "ratio"),
+                ("_weight_tip", "ratio"), ("_weight_min", "ratio"), ("_weight_max", "ratio"))
+
+
+def unit_of(name: str, value: Any = None) -> str:
+    """The unit of a listed setting or correction (see :data:`UNITS`)."""
+    last = name.rsplit(".", 1)[-1]
+    for key in (name, last):
+        if key in UNITS:
+            return UNITS[key]
+    for suffix, unit in SUFFIX_UNITS:
+        if last.endswith(suffix):
+            return unit
+    if name.startswith("barrel.modes_hz"):
+        return "Hz"
+    return ""
+
+
 def flatten(data: dict[str, Any], prefix: str = "") -> Iterator[tuple[str, str]]:
     """``{"barrel": {"k": 1}}`` -> ``("barrel.k", "1")``; lists are joined with commas."""
     for key, value in data.items():
@@ -166,12 +210,15 @@ def rule_margin(margin: float | None, unit: str) -> Display | str:
     if margin is None:
         return DASH
     if unit == "m":
-        return Display(signed(f"{margin * 1000:+.1f} mm"), signed(f"{margin / INCH:+.3f} in"))
+        return Display(margin_text(margin * 1000, 1, "mm"),
+                       "0 in" if margin == 0 else margin_text(margin / INCH, 3, "in"))
     if unit == "m/s":
         s = show(abs(margin), "speed", 2)
+        if margin == 0 or s.si.startswith("0.00"):
+            return Display(margin_text(margin, 2, "m/s"), None)
         sign = MINUS if margin < 0 else "+"
         return Display(sign + s.si, (sign + s.us) if s.us else None)
-    return Display(signed(f"{margin:+.2f}" if unit == "in - oz" else f"{margin:+.4f}"), None)
+    return Display(margin_text(margin, 2 if unit == "in - oz" else 4), None)
 
 
 # ---------------------------------------------------------------- text

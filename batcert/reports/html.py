@@ -78,7 +78,17 @@ def metric_chart(result: RunResult) -> str:
     )
 
 
-FILTERS = {"cell": cell}
+def css_string(text: object):
+    """``text`` as the body of a CSS string: every character but letters, digits and spaces as
+    a CSS escape, so that user text (a bat's name) can neither end the string nor the style
+    element (``</style>``); marked safe, as HTML escaping inside a style element would show."""
+    from markupsafe import Markup
+
+    return Markup("".join(c if c.isalnum() and c.isascii() or c == " " else f"\\{ord(c):x} "
+                          for c in str(text)))
+
+
+FILTERS = {"cell": cell, "css_string": css_string}
 
 
 def run_html(result: RunResult) -> str:

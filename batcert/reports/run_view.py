@@ -17,7 +17,8 @@ def verdict(result: RunResult) -> dict[str, Any]:
     if result.verdict is None or result.limit is None:
         return {"label": "NO LIMIT", "css": "none", "value": value, "limit": None,
                 "tolerance": None, "margin": None,
-                "sentence": f"{name} {value}; the protocol sets no limit."}
+                "sentence": f"{name} {value}; the protocol sets no limit.",
+                "basis": basis(result)}
     limit, tol = fmt.metric_value(result.limit, m), fmt.metric_value(result.tolerance, m)
     margin = fmt.metric_value(result.margin, m, signed_=True)
     passed = result.verdict.lower() == "pass"
@@ -27,7 +28,14 @@ def verdict(result: RunResult) -> dict[str, Any]:
         "label": "PASS" if passed else "FAIL", "css": "pass" if passed else "fail",
         "value": value, "limit": limit, "tolerance": tol, "margin": margin,
         "sentence": f"{name} {value} {relation} limit {limit}{tol_text}; margin {margin}.",
+        "basis": basis(result),
     }
+
+
+def basis(result: RunResult) -> str:
+    """Whether the values were measured or computed, and how."""
+    return (f"Values computed by batcert's {result.engine} model of the bat from its "
+            "specification (not measured on a bench).")
 
 
 def header_rows(result: RunResult) -> list[tuple[str, str]]:
@@ -154,11 +162,42 @@ def bat_table(result: RunResult) -> Table:
     ], numeric=[False, True])
 
 
+MODE_KEYS = ("modes_hz", "mode_nodes")  # shown in the modes table, each node with its mode
+
+
 def engine_table(result: RunResult) -> Table:
-    rows: list[list[Any]] = [["engine", result.engine], ["support", result.support]]
-    rows += [[k, v] for k, v in fmt.flatten(result.engine_settings)]
-    rows += [[k, v] for k, v in fmt.flatten(result.extras)]
-    return Table(["Setting or diagnostic", "Value"], rows)
+    """The engine's settings and the bat's diagnostics, each with its unit (SI)."""
+    rows: list[list[Any]] = [] if "engine" in result.engine_settings else \
+        [["engine", result.engine, ""]]
+    rows += [["support", result.support, ""]]
+    rows += [[k, v, fmt.unit_of(k)] for k, v in fmt.flatten(result.engine_settings)]
+    extras = {k: v for k, v in result.extras.items() if k not in MODE_KEYS}
+    rows += [[k, v, fmt.unit_of(k)] for k, v in fmt.flatten(extras)]
+    return Table(["Setting or diagnostic", "Value", "Unit"], rows)
+
+
+def modes_table(result: RunResult) -> Table | None:
+    """The bat's free-free bending modes, each with its nodes; None without them."""
+    freqs = result.extras.get("modes_hz") or []
+    nodes = result.extras.get("mode_nodes") or []
+    if not freqs:
+        return None
+    t = Table(["Mode", "Frequency [Hz]", "Nodes [cm from knob]"], numeric=[True, True, False])
+    for i, f in enumerate(freqs):
+        at = nodes[i] if i < len(nodes) else []
+        t.rows.append([str(i + 1), f"{f:.0f}", ", ".join(f"{100 * z:.1f}" for z in at)
+                       or fmt.DASH])
+    return t
+
+
+def corrections_table(result: RunResult) -> Table | None:
+    """The reconciliation's and calibrations' corrections, each with its unit (SI)."""
+    corr = result.mass_properties.corrections
+    if not corr:
+        return None
+    return Table(["Correction", "Value", "Unit"],
+                 [[k, fmt.number(v), fmt.unit_of(k)] for k, v in corr.items()],
+                 numeric=[False, True, False])
 
 
 def barrel_note(result: RunResult) -> str:
@@ -202,7 +241,10 @@ def run_view(result: RunResult) -> dict[str, Any]:
         "mass": mass_table(result),
         "bat": bat_table(result),
         "reconciliation": mp.reconciliation,
-        "corrections": [(k, fmt.number(v)) for k, v in mp.corrections.items()],
+        "corrections": corrections_table(result),
         "engine": engine_table(result),
+        "modes": modes_table(result),
+        "print_header": f"{result.bat} \u2014 {result.protocol} \u2014 "
+                        f"{verdict(result)['label']}",
         "show_metric_plot": result.metric != "exit-speed",
     }

@@ -3,7 +3,7 @@
 A league file lists rules. Each rule has a ``kind`` from
 :data:`batcert.analysis.league.RULE_KINDS` (the registry: the kind says how its ``limit`` is read,
 which other fields it needs and how it is evaluated), the bats it ``applies_to`` (all,
-wood or non-wood), a ``source`` and a ``confidence`` (H, M, L, D as in REFERENCE-DATA.md). A rule
+wood or non-wood), a ``source`` and a ``confidence`` (H, M, L, D as in docs/references.md). A rule
 that batcert cannot evaluate yet is written with ``status: not-modelled`` and a ``reason``; the
 league report then lists it as not modelled instead of passing it. The evaluation itself lives in
 :mod:`batcert.analysis.league`.
@@ -148,7 +148,7 @@ RULE_SCHEMA = Schema("league rule", (
     Field("reason", text(), "Why a rule is not modelled (required then)."),
     Field("source", text(), "Where the rule and its number come from.", required=True),
     Field("confidence", choice(*CONFIDENCE), "H primary source read, M credible secondary, "
-          "L weak, D derived (REFERENCE-DATA.md's scale).", required=True),
+          "L weak, D derived (docs/references.md's scale).", required=True),
     Field("note", text(), "Assumptions made to evaluate the rule."),
 ), checks=(_check_rule,))
 

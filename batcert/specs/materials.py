@@ -12,16 +12,16 @@ LIBRARY: dict[str, tuple[Material, str]] = {
     "ash": (
         Material("ash", 600.0, 12.0e9, 12.0e9 * _WOOD_G_OVER_E, 0.3, 0.0),
         "White ash: specific gravity about 0.60, E about 12 GPa (handbook static value; bats "
-        "measure higher). G from Nathan 2000's G/E ratio. REFERENCE-DATA.md, Materials.",
+        "measure higher). G from Nathan 2000's G/E ratio. docs/references.md, Materials.",
     ),
     "maple": (
         Material("maple", 630.0, 12.6e9, 12.6e9 * _WOOD_G_OVER_E, 0.3, 0.0),
         "Sugar maple: specific gravity about 0.63, E about 12.6 GPa (USDA Wood Handbook, "
-        "clear wood at 12 % moisture; not in REFERENCE-DATA, M). G from Nathan 2000's G/E ratio.",
+        "clear wood at 12 % moisture; not in docs/references.md, M). G from Nathan 2000's G/E ratio.",
     ),
     "birch": (
         Material("birch", 620.0, 13.9e9, 13.9e9 * _WOOD_G_OVER_E, 0.3, 0.0),
-        "Yellow birch: specific gravity 0.62, E 13.9 GPa. REFERENCE-DATA.md, Materials. "
+        "Yellow birch: specific gravity 0.62, E 13.9 GPa. docs/references.md, Materials. "
         "G from Nathan 2000's G/E ratio.",
     ),
     "ash-bat": (
@@ -35,7 +35,7 @@ LIBRARY: dict[str, tuple[Material, str]] = {
     ),
     "aluminium-7050": (
         Material("aluminium-7050", 2830.0, 71.7e9, 26.9e9, 0.33, 1.0e-4),
-        "Aluminium 7050: 2830 kg/m^3, E 71.7 GPa, G 26.9 GPa, Poisson 0.33 (REFERENCE-DATA.md, "
+        "Aluminium 7050: 2830 kg/m^3, E 71.7 GPa, G 26.9 GPa, Poisson 0.33 (docs/references.md, "
         "H). Loss factor 1e-4: aluminium's flexural loss factor (Cremer & Heckl, Structure-Borne "
         "Sound, 1988, as tabulated by T. Irvine, 'Damping properties of materials', 2004; M).",
     ),

@@ -283,19 +283,25 @@ def test_no_warnings_section_without_warnings(passing):
 
 def test_engine_diagnostics_from_extras():
     html = render_html(sample_result(extras={
-        "modes_hz": [172.4, 571.9], "contact_time_ms": 0.7123456,
+        "modes_hz": [172.4, 571.9], "mode_nodes": [[0.17, 0.68], [0.07, 0.39, 0.72]],
+        "contact_time_ms": 0.7123456,
         "barrel": {"hoop_frequency_hz": 1234.5678, "model": "<hollow>"}, "flag": True}))
     check_tags(html)
     section = html.split("<h2>Engine</h2>")[1]
-    rows = {re.sub(r"<[^>]+>", "", k): re.sub(r"<[^>]+>", "", v) for k, v in re.findall(
-        r"<tr><th scope=\"row\">(.*?)</th><td>(.*?)</td></tr>", section)}
-    assert rows["engine"] == "flexible" and rows["support"] == "pinned"
-    assert rows["modes"] == "18" and rows["time_step"] == "5e-06"
-    assert rows["modes_hz"] == "172.4, 571.9"
-    assert rows["contact_time_ms"] == "0.71235"
-    assert rows["barrel.hoop_frequency_hz"] == "1234.6"
-    assert rows["barrel.model"] == "&lt;hollow&gt;"
-    assert rows["flag"] == "true"
+    rows = {re.sub(r"<[^>]+>", "", k): [re.sub(r"<[^>]+>", "", c) for c in cells] for k, *cells
+            in re.findall(r"<tr><th scope=\"row\">(.*?)</th><td>(.*?)</td><td>(.*?)</td></tr>",
+                          section)}
+    assert rows["engine"] == ["flexible", ""] and rows["support"] == ["pinned", ""]
+    assert "engine" in rows and section.count(">engine<") == 1  # the engine row once
+    assert rows["modes"] == ["18", ""] and rows["time_step"] == ["5e-06", "s"]
+    assert rows["contact_time_ms"] == ["0.71235", ""]
+    assert rows["barrel.hoop_frequency_hz"] == ["1234.6", "Hz"]
+    assert rows["barrel.model"] == ["&lt;hollow&gt;", ""]
+    assert rows["flag"] == ["true", ""]
+    # each mode with its own nodes, in their own table
+    modes = re.findall(r"<tr><th scope=\"row\">(\d)</th><td class=\"num\">(\d+)</td><td>(.*?)</td>",
+                       section)
+    assert modes == [("1", "172", "17.0, 68.0"), ("2", "572", "7.0, 39.0, 72.0")]
 
 
 def test_names_are_escaped_everywhere():

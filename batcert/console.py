@@ -103,18 +103,11 @@ def _emit(parts: Sequence[tuple[str, str]], stderr: bool = False) -> None:
 
 def print_json(data: Any) -> None:
     """``data`` as strict JSON (a non-finite number, which no result should hold, is null)."""
-    sys.stdout.write(json.dumps(_finite(data), indent=2, allow_nan=False) + "\n")
+    from batcert.results.serialise import map_floats
+
+    finite = map_floats(data, lambda x: x if math.isfinite(x) else None)
+    sys.stdout.write(json.dumps(finite, indent=2, allow_nan=False) + "\n")
     sys.stdout.flush()
-
-
-def _finite(data: Any) -> Any:
-    if isinstance(data, float):
-        return data if math.isfinite(data) else None
-    if isinstance(data, dict):
-        return {k: _finite(v) for k, v in data.items()}
-    if isinstance(data, (list, tuple)):
-        return [_finite(v) for v in data]
-    return data
 
 
 def error(message: str) -> None:

@@ -133,8 +133,7 @@ def _check_spelling(value: str, unit_text: str, ureg, example: str) -> None:
         spelled = {name, ureg.get_symbol(word), *(unit.aliases if unit is not None else ())}
         plurals = {w + ("es" if w.endswith(("s", "sh", "ch", "x", "z")) else "s")
                    for w in spelled}
-        prefixed = any(word.endswith(w) and len(word) > len(w) for w in spelled | plurals)
-        if word not in spelled | plurals and not prefixed:
+        if word not in spelled | plurals:
             raise UnitError(f"cannot read {value!r}: unknown unit {word!r} (e.g. '{example}')")
 
 

@@ -11,6 +11,7 @@ from batcert.errors import UsageProblem
 from batcert.model.build import BuiltBat
 from batcert.model.diagnostics import bat_dynamics
 from batcert.model.mass import mass_properties, pivot_problem
+from batcert.results.serialise import map_floats
 from batcert.specs.ball import BallSpec
 
 
@@ -47,13 +48,7 @@ SIGNIFICANT = 6  # digits kept by inspect: more than the inputs (3-4 digits) or 
 def rounded(data, digits: int = SIGNIFICANT):
     """Every float in ``data`` rounded to ``digits`` significant digits, so that printed numbers
     show what they carry (0.429, not 0.4289999999999998)."""
-    if isinstance(data, float):
-        return float(f"{data:.{digits}g}") if np.isfinite(data) else data
-    if isinstance(data, dict):
-        return {k: rounded(v, digits) for k, v in data.items()}
-    if isinstance(data, (list, tuple)):
-        return [rounded(v, digits) for v in data]
-    return data
+    return map_floats(data, lambda x: float(f"{x:.{digits}g}") if np.isfinite(x) else x)
 
 
 def inspect_ball(ball: BallSpec, speeds=(1.0, 11.0, 25.9, 45.0, 58.0, 60.0, 67.0)) -> dict:

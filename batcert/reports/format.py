@@ -151,7 +151,7 @@ SUFFIX_UNITS = (("_hz", "Hz"), ("_scale", "ratio"), ("_weight_knob", "ratio"),
                 ("_weight_tip", "ratio"), ("_weight_min", "ratio"), ("_weight_max", "ratio"))
 
 
-def unit_of(name: str, value: Any = None) -> str:
+def unit_of(name: str) -> str:
     """The unit of a listed setting or correction (see :data:`UNITS`)."""
     last = name.rsplit(".", 1)[-1]
     for key in (name, last):
@@ -213,9 +213,9 @@ def rule_margin(margin: float | None, unit: str) -> Display | str:
         return Display(margin_text(margin * 1000, 1, "mm"),
                        "0 in" if margin == 0 else margin_text(margin / INCH, 3, "in"))
     if unit == "m/s":
-        s = show(abs(margin), "speed", 2)
-        if margin == 0 or s.si.startswith("0.00"):
+        if abs(margin) < 0.005:  # at the limit, or within the 0.01 m/s shown
             return Display(margin_text(margin, 2, "m/s"), None)
+        s = show(abs(margin), "speed", 2)
         sign = MINUS if margin < 0 else "+"
         return Display(sign + s.si, (sign + s.us) if s.us else None)
     return Display(margin_text(margin, 2 if unit == "in - oz" else 4), None)

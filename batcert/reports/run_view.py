@@ -221,11 +221,12 @@ def barrel_note(result: RunResult) -> str:
 def run_view(result: RunResult) -> dict[str, Any]:
     """Everything a run report shows, formatted; the templates only arrange it."""
     mp = result.mass_properties
+    shown = verdict(result)
     return {
         "result": result,
         "title": f"{result.bat} \u2014 {result.protocol}",
         "metric_name": fmt.metric_name(result.metric),
-        "verdict": verdict(result),
+        "verdict": shown,
         "barrel_note": barrel_note(result),
         "header": header_rows(result),
         "header_table": Table(["Item", "Value"], [list(r) for r in header_rows(result)]),
@@ -244,7 +245,6 @@ def run_view(result: RunResult) -> dict[str, Any]:
         "corrections": corrections_table(result),
         "engine": engine_table(result),
         "modes": modes_table(result),
-        "print_header": f"{result.bat} \u2014 {result.protocol} \u2014 "
-                        f"{verdict(result)['label']}",
+        "print_header": f"{result.bat} \u2014 {result.protocol} \u2014 {shown['label']}",
         "show_metric_plot": result.metric != "exit-speed",
     }

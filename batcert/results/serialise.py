@@ -17,6 +17,17 @@ from typing import Any, TypeVar, Union, get_args, get_origin, get_type_hints
 T = TypeVar("T")
 
 
+def map_floats(data: Any, fn: typing.Callable[[float], Any]) -> Any:
+    """``data`` (dicts, lists and tuples, as lists) with ``fn`` applied to every float in it."""
+    if isinstance(data, float):
+        return fn(data)
+    if isinstance(data, dict):
+        return {k: map_floats(v, fn) for k, v in data.items()}
+    if isinstance(data, (list, tuple)):
+        return [map_floats(v, fn) for v in data]
+    return data
+
+
 def from_dict(cls: type[T], data: dict[str, Any]) -> T:
     """Rebuild ``cls`` (a dataclass) from :func:`dataclasses.asdict` output; keys not among its
     fields are ignored, missing ones take the field's default."""

@@ -129,6 +129,8 @@ def check_applicable(protocol: ProtocolSpec, built: BuiltBat) -> None:
     on = f"bat {built.spec.name!r} ({bat.length * 100:.1f} cm, CG {bat.balance_point * 100:.1f} " \
          "cm from the knob)"
     reach = bat.length - p.pivot - CLEARANCE  # farthest from the tip an impact may be [m]
+    short = f"at least {CLEARANCE * 100:.0f} cm short of the pivot " \
+            f"({(bat.length - p.pivot) * 100:.1f} cm from the tip)"
 
     def add(field_: str, message: str) -> None:
         errors.add(p.line(*split_field(field_)), p.field(field_), f"{message}, for {on}")
@@ -140,12 +142,10 @@ def check_applicable(protocol: ProtocolSpec, built: BuiltBat) -> None:
     loc = p.impact_location
     if loc.rule == "fixed-from-tip" and loc.from_tip is not None and loc.from_tip >= reach:
         add("impact_location.from_tip", f"the impact point ({loc.from_tip * 100:.1f} cm from "
-            f"the tip) must be at least {CLEARANCE * 100:.0f} cm short of the pivot "
-            f"({(bat.length - p.pivot) * 100:.1f} cm from the tip)")
+            f"the tip) must be {short}")
     elif loc.window[1] >= reach:
         add("impact_location.window", f"the search window reaches {loc.window[1] * 100:.1f} cm "
-            f"from the tip: it must end at least {CLEARANCE * 100:.0f} cm short of the pivot "
-            f"({(bat.length - p.pivot) * 100:.1f} cm from the tip)")
+            f"from the tip: it must end {short}")
     for i, c in enumerate(p.conditions):
         if c.bat_speed_from_tip is not None and c.bat_speed_from_tip >= reach:
             add(f"conditions[{i}].bat_speed_from_tip", f"the bat speed is given "

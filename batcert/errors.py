@@ -100,3 +100,12 @@ class ModelError(ValueError):
 
 class UsageProblem(ValueError):
     """The command line asks for something impossible (e.g. fewer than two bats to compare)."""
+
+
+class OutputError(OSError):
+    """Reports (or a sweep's journal) cannot be written where asked (permissions, a full disk,
+    a path that is a file or too long): an environment problem, not bad input (exit 4)."""
+
+    def __init__(self, where: Path, reason: str):
+        super().__init__(f"cannot write reports to {where}: {reason}")
+        self.where, self.reason = where, reason

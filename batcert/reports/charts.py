@@ -44,6 +44,7 @@ def line_chart(
     y2: SecondaryAxis | None = None,
     x_range: tuple[float, float] | None = None,
     y_range: tuple[float, float] | None = None,
+    hlines: Sequence[tuple[float, str]] = (),
     width: int = 640,
     height: int = 360,
 ) -> str:
@@ -54,7 +55,8 @@ def line_chart(
     for ``points`` in the legend (left out when empty).
     """
     xs = finite([v for s in series for v in s.x]) + finite([m.x for m in vlines])
-    ys = finite([v for s in series for v in s.y]) + finite([p.y for p in points])
+    ys = finite([v for s in series for v in s.y]) + finite([p.y for p in points]) \
+        + finite([y for y, _ in hlines])
     x_lo, x_hi = x_range or ((min(xs), max(xs)) if xs else (0.0, 1.0))
     if x_lo == x_hi:
         x_lo, x_hi = x_lo - 0.5, x_hi + 0.5
@@ -91,6 +93,10 @@ def line_chart(
             c.line(x, top, x, top + plot_h, stroke=m.color, width=1.2, dasharray="4 3")
             c.text(x, top - 4 - 14 * (n_label_rows - 1 - row), m.label, size=11, anchor=anchor,
                    fill=m.color)
+    for y, label in hlines:  # e.g. a protocol's limit
+        if math.isfinite(y) and y_lo <= y <= y_hi:
+            c.line(left, py(y), left + plot_w, py(y), stroke=INK, width=1.5, dasharray="8 4")
+            c.text(left + plot_w - 4, py(y) - 5, label, size=11, anchor="end")
     _draw_lines(c, series, points, (x_lo, x_hi), (y_lo, y_hi), px, py)
     return c.done()
 

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from batcert.reports import charts, svg
+from batcert.reports import svg
+from batcert.reports.figure import Figure, LineFigure, svg_of
 from batcert.reports.format import metric_name
 from batcert.reports.table import Badge
 from batcert.reports.templates import render_template
@@ -16,6 +17,7 @@ if TYPE_CHECKING:
     from batcert.results.compare import ComparisonResult
     from batcert.results.league import LeagueResult
     from batcert.results.run import RunResult
+    from batcert.results.sweep import SweepResult
 
 X_LABEL = "Impact location from the pivot [m]"
 
@@ -42,40 +44,28 @@ def _cop_lines(result: RunResult) -> list[svg.VLine]:
             for i, c in enumerate(result.conditions)]
 
 
-def exit_speed_chart(result: RunResult) -> str:
-    """Exit speed against impact location, one line per condition, impact points circled."""
-    series = [svg.Series(c.name, c.sweep.impact_location, c.sweep.exit_speed)
-              for c in result.conditions]
+def run_figures(result: RunResult) -> list[Figure]:
+    """Exit speed against impact location, one line per condition, impact points circled;
+    and the protocol metric likewise when it is not the exit speed."""
+    from batcert.reports.run_view import shows_metric_plot
     points = [svg.Point(c.impact_location, c.exit_speed, i)
               for i, c in enumerate(result.conditions)]
-    return charts.line_chart(
-        series,
-        title="Exit speed against impact location",
-        x_label=X_LABEL,
-        y_label="Exit speed [m/s]",
-        y2=svg.SecondaryAxis("Exit speed [mph]", to_us(1.0, "speed")),
-        vlines=_cop_lines(result),
-        points=points,
-        point_legend="impact point",
-    )
-
-
-def metric_chart(result: RunResult) -> str:
-    """The protocol metric against impact location (only when it is not the exit speed)."""
-    name = metric_name(result.metric)
-    series = [svg.Series(c.name, c.sweep.impact_location, c.sweep.metric)
-              for c in result.conditions]
-    points = [svg.Point(c.impact_location, c.metric_value, i)
-              for i, c in enumerate(result.conditions)]
-    return charts.line_chart(
-        series,
-        title=f"{name} against impact location",
-        x_label=X_LABEL,
-        y_label=f"{name} [-]",
-        vlines=_cop_lines(result),
-        points=points,
-        point_legend="impact point",
-    )
+    figs: list[Figure] = [LineFigure(
+        "exit-speed", "Exit speed against impact location", X_LABEL, "Exit speed [m/s]",
+        [svg.Series(c.name, c.sweep.impact_location, c.sweep.exit_speed)
+         for c in result.conditions],
+        vlines=_cop_lines(result), points=points, point_legend="impact point",
+        y2=svg.SecondaryAxis("Exit speed [mph]", to_us(1.0, "speed")))]
+    if shows_metric_plot(result):
+        name = metric_name(result.metric)
+        figs.append(LineFigure(
+            "metric", f"{name} against impact location", X_LABEL, f"{name} [-]",
+            [svg.Series(c.name, c.sweep.impact_location, c.sweep.metric)
+             for c in result.conditions],
+            vlines=_cop_lines(result), point_legend="impact point",
+            points=[svg.Point(c.impact_location, c.metric_value, i)
+                    for i, c in enumerate(result.conditions)]))
+    return figs
 
 
 def css_string(text: object):
@@ -97,9 +87,7 @@ def run_html(result: RunResult) -> str:
 
     from batcert.reports.run_view import run_view
     view = run_view(result)
-    view["charts"] = [Markup(exit_speed_chart(result))]
-    if view["show_metric_plot"]:
-        view["charts"].append(Markup(metric_chart(result)))
+    view["charts"] = [Markup(svg_of(f)) for f in run_figures(result)]
     return render_template("report.html.j2", view, FILTERS)
 
 
@@ -113,3 +101,9 @@ def league_html(result: LeagueResult) -> str:
     """A league evaluation as one styled HTML5 page."""
     from batcert.reports.league_view import league_view
     return render_template("league.html.j2", league_view(result), FILTERS)
+
+
+def sweep_html(result: SweepResult) -> str:
+    """A sweep or design study as one styled HTML5 page with its figures."""
+    from batcert.reports.sweep_view import sweep_view
+    return render_template("sweep.html.j2", sweep_view(result), FILTERS)

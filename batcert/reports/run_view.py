@@ -218,6 +218,11 @@ def barrel_note(result: RunResult) -> str:
     return text + "."
 
 
+def shows_metric_plot(result: RunResult) -> bool:
+    """The metric gets its own plot unless it is the exit speed (already plotted)."""
+    return result.metric != "exit-speed"
+
+
 def run_view(result: RunResult) -> dict[str, Any]:
     """Everything a run report shows, formatted; the templates only arrange it."""
     mp = result.mass_properties
@@ -246,5 +251,5 @@ def run_view(result: RunResult) -> dict[str, Any]:
         "engine": engine_table(result),
         "modes": modes_table(result),
         "print_header": f"{result.bat} \u2014 {result.protocol} \u2014 {shown['label']}",
-        "show_metric_plot": result.metric != "exit-speed",
+        "show_metric_plot": shows_metric_plot(result),
     }

@@ -20,7 +20,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from batcert.errors import OutputError
 from batcert.reports.format import slugify
+
+__all__ = ["OutputError", "check_output_dir", "render", "report_stem", "write_reports",
+           "write_texts"]
 
 SUFFIXES = {"md": ".md", "html": ".html", "json": ".json"}  # report formats and file suffixes
 
@@ -70,17 +74,31 @@ def league_stem(result: Any) -> str:
     return _stem("league", result.league, "+".join(Path(b.path).stem for b in result.bats))
 
 
+def sweep_stem(result: Any) -> str:
+    """``sweep--<protocol>--<parameters>--<bat file stem>`` (``design--`` for a design study)."""
+    kind = "design" if result.design is not None else "sweep"
+    what = result.protocol + "--" + "+".join(a.name for a in result.axes)
+    return _stem(kind, what, Path(result.bat_path).stem)
+
+
 def _kind(result: Any) -> ReportKind:
     """The report kind of a result (renderers imported lazily to keep start-up fast)."""
     from batcert.reports import html, markdown
     from batcert.results.compare import ComparisonResult
     from batcert.results.league import LeagueResult
     from batcert.results.run import RunResult
+    from batcert.results.sweep import SweepResult
     kinds = {RunResult: ReportKind(run_stem, markdown.run_markdown, html.run_html),
              ComparisonResult: ReportKind(comparison_stem, markdown.comparison_markdown,
                                           html.comparison_html),
-             LeagueResult: ReportKind(league_stem, markdown.league_markdown, html.league_html)}
+             LeagueResult: ReportKind(league_stem, markdown.league_markdown, html.league_html),
+             SweepResult: ReportKind(sweep_stem, markdown.sweep_markdown, html.sweep_html)}
     return kinds[type(result)]
+
+
+def report_stem(result: Any) -> str:
+    """The file stem of a result's reports (and of its figures and sweep journal)."""
+    return _kind(result).stem(result)
 
 
 def render(result: Any, fmt: str) -> str:
@@ -109,15 +127,6 @@ def write_reports(result: Any, out_dir: Path, formats: Sequence[str] = ("md", "h
         raise ValueError(f"report stem {stem!r} must be a plain file name")
     out_dir = Path(out_dir)
     return write_texts({out_dir / f"{stem}{SUFFIXES[f]}": kind.render(result, f) for f in wanted})
-
-
-class OutputError(OSError):
-    """The reports cannot be written where asked (permissions, a full disk, a path that is a
-    file or too long): an environment problem, not bad input."""
-
-    def __init__(self, where: Path, reason: str):
-        super().__init__(f"cannot write reports to {where}: {reason}")
-        self.where, self.reason = where, reason
 
 
 def _reason(exc: OSError) -> str:
@@ -157,9 +166,9 @@ def check_output_dir(directory: Path) -> None:
         raise OutputError(directory, _reason(exc)) from None
 
 
-def write_texts(texts: dict[Path, str]) -> list[Path]:
-    """Write already-rendered reports as one set (module notes). Parent directories are
-    created. Raises :class:`OutputError`, leaving the previous set as it was."""
+def write_texts(texts: dict[Path, str | bytes]) -> list[Path]:
+    """Write already-rendered reports (text, or bytes such as a PNG) as one set (module
+    notes). Parent directories are created. Raises :class:`OutputError`, leaving the previous set as it was."""
     try:
         for directory in {Path(p).parent for p in texts}:
             check_output_dir(directory)
@@ -180,7 +189,7 @@ def atomic_write_text(path: Path, text: str, encoding: str = "utf-8") -> Path:
     return path
 
 
-def _write_all(texts: dict[Path, str], encoding: str = "utf-8") -> None:
+def _write_all(texts: dict[Path, str | bytes], encoding: str = "utf-8") -> None:
     """Stage every file, set the existing targets aside, move the staged files in; on any
     failure (or an interrupt) undo what was done, so the previous set stays whole."""
     staged: list[tuple[str, Path]] = []
@@ -190,7 +199,8 @@ def _write_all(texts: dict[Path, str], encoding: str = "utf-8") -> None:
         for target, text in texts.items():
             if target.is_dir():
                 raise OutputError(target, "a directory is in the way of this report")
-            staged.append((_stage(target, text.encode(encoding)), target))
+            data = text if isinstance(text, bytes) else text.encode(encoding)
+            staged.append((_stage(target, data), target))
         for _, target in staged:
             if target.exists():
                 backup = _reserve(target, ".bak")

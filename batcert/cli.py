@@ -173,12 +173,30 @@ def _output_options(printed: str, engine_help: str = "Impact engine tier."):
     return decorate
 
 
+FIGURES_OPTION = click.option(
+    "--figures", "figures_dir", type=click.Path(file_okay=False, path_type=Path), default=None,
+    help="Also write every figure of the report as SVG, PDF and PNG files into this directory "
+         "(drawn with matplotlib).")
+
+
+def _figures(result, figures_dir: Path | None) -> None:
+    if figures_dir is None:
+        return
+    from batcert.reports.figures import figures_of, write_figures
+    from batcert.reports.write import check_output_dir, report_stem
+    check_output_dir(figures_dir)
+    paths = write_figures(figures_of(result), figures_dir, report_stem(result))
+    console.note(f"wrote {len(paths)} figure files to {figures_dir}")
+
+
 @click.group(epilog=EXIT_CODES + """
 
 \b
 Examples:
   batcert run bats/aluminium-34.yaml --protocol proposed
   batcert compare --study smith2001
+  batcert sweep aluminium-34 -p ncaa-bbcor --vary wall=60%:140%:9
+  batcert design aluminium-34 -p ncaa-bbcor --solve wall --range 100%:250%
   batcert list bats
 Shell completion: see docs/cli.md (e.g. eval "$(_BATCERT_COMPLETE=bash_source batcert)").""",
              context_settings={"help_option_names": ["-h", "--help"]})
@@ -204,8 +222,9 @@ Examples:
               help="Shipped protocol id (see `batcert list protocols`) or a protocol YAML path; "
                    "repeat for several.")
 @_output_options("results")
+@FIGURES_OPTION
 @_guard
-def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
+def run(bat, protocols, engine, out_dir, formats, no_reports, as_json, figures_dir):
     """Run BAT (a bat YAML path or shipped bat name) under one or more protocols, print the
     verdict and write Markdown, HTML and JSON reports."""
     from batcert.commands.inputs import load_bat_any, load_protocol_any
@@ -230,6 +249,8 @@ def run(bat, protocols, engine, out_dir, formats, no_reports, as_json):
             for r, paths in zip(results, written, strict=True):
                 console.run_summary(r, paths)
     _write_then_show(results, target, fmts, show)
+    for r in results:
+        _figures(r, figures_dir)
     clock.lap("reports")
     clock.report()
     sys.exit(1 if any(r.verdict == "fail" for r in results) else 0)
@@ -412,8 +433,10 @@ Examples:
 @click.option("--reference", default=None, help="Reference bat of P = (P_bat - P_ref) / P_ref "
               "(Smith 2001 Eq. 6); default the first bat; added to the bats if not among them.")
 @_output_options("comparison")
+@FIGURES_OPTION
 @_guard
-def compare(bats, protocols, study, reference, engine, out_dir, formats, no_reports, as_json):
+def compare(bats, protocols, study, reference, engine, out_dir, formats, no_reports, as_json,
+            figures_dir):
     """Run every BAT under every protocol and compare them side by side: the metric per protocol
     and condition, the relative performance P against the reference bat with its mean and spread,
     the COP against the sweet spot, and a study's claims tested against the model."""
@@ -426,6 +449,7 @@ def compare(bats, protocols, study, reference, engine, out_dir, formats, no_repo
                                 on_step=_stepper(bar))
     clock.lap("inputs and engine")
     _deliver(result, console.comparison_summary, target, fmts, as_json)
+    _figures(result, figures_dir)
     clock.lap("reports")
     clock.report()
     failed = any(v == "fail" for p in result.protocols for v in p.verdicts.values())
@@ -459,6 +483,146 @@ def league(league_id, bats, engine, allow_not_modelled, out_dir, formats, no_rep
     clock.lap("reports")
     clock.report()
     sys.exit(0 if result.passed(allow_not_modelled) else 1)
+
+
+SWEEP_EXIT_CODES = """\b
+Exit codes:
+  0  every variant was evaluated (whatever their verdicts; see the reports)
+  2  usage error (unknown parameter or option, a value the parameter cannot take, a
+     scheduler that cannot be reached)
+  3  invalid input (a spec file has errors; nothing is written)
+""" + ENVIRONMENT_EXIT_CODES
+
+DESIGN_EXIT_CODES = """\b
+Exit codes:
+  0  the limit is met somewhere in the range (the values are reported)
+  1  no value in the range meets the limit
+  2  usage error (unknown parameter, a protocol without a limit, a bad range)
+  3  invalid input (a spec file has errors; nothing is written)
+""" + ENVIRONMENT_EXIT_CODES
+
+
+def _scale_options(func):
+    """--workers and --scheduler, shared by sweep and design."""
+    for option in reversed([
+        click.option("--workers", type=click.IntRange(1, 256), default=1, show_default=True,
+                     help="Evaluate variants in this many processes on this machine."),
+        click.option("--scheduler", default=None, metavar="ADDRESS",
+                     help="Run the variants on a dask.distributed cluster (e.g. "
+                          "tcp://10.0.0.5:8786); needs pip install 'batcert[distributed]'."),
+    ]):
+        func = option(func)
+    return func
+
+
+def _counter(bar):
+    def on_progress(done: int, total: int) -> None:
+        bar.count(done, total)
+        console.log(f"{done} of {total} variants", level=2)
+    return on_progress
+
+
+@main.command(epilog=SWEEP_EXIT_CODES + """
+
+\b
+Examples:
+  batcert sweep bats/aluminium-34.yaml -p ncaa-bbcor --vary wall=60%:140%:9
+  batcert sweep ash-34 -p smith2001-bpf-sweet-spot.yaml --vary bat_angular_speed=0:60rad/s:13
+  batcert sweep aluminium-34 -p proposed --vary wall=80%:120%:5 --vary relative_speed=50:70m/s:3
+  batcert sweep aluminium-34 -p ncaa-bbcor --vary wall=50%:150%:201 --workers 2 --resume
+
+\b
+Parameters: wall, youngs_modulus, density, barrel_diameter (the bat's geometry and material;
+the variants' mass properties then come from the geometry), mass, moi, hoop_frequency
+(measured properties), pitch_speed, bat_angular_speed, relative_speed (the protocol's speeds).
+Values: START:STOP:N with units (2mm:3.5mm:7) or as percent of nominal (60%:140%:9).""")
+@click.argument("bat", shell_complete=_complete("bat"))
+@click.option("--protocol", "-p", "protocol", required=True, shell_complete=_complete("protocol"),
+              help="Shipped protocol id or protocol YAML path.")
+@click.option("--vary", "varies", multiple=True, required=True, metavar="PARAM=START:STOP:N",
+              help="A parameter and its values; give two for a grid.")
+@click.option("--resume", is_flag=True, help="Continue an interrupted sweep from its journal "
+              "in the report directory, without redoing the finished variants.")
+@_scale_options
+@FIGURES_OPTION
+@_output_options("sweep")
+@_guard
+def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine, out_dir,
+          formats, no_reports, as_json):
+    """Run BAT under one protocol for every value of one or two parameters (a grid), and
+    report every metric, the sweet spot and the COP against them."""
+    from batcert.commands.sweep import finish_journal, journal_path, plan_sweep, run_sweep
+    from batcert.reports.write import sweep_stem
+    fmts = _formats(formats)
+    clock = _Clock()
+    plan = plan_sweep(bat, protocol, list(varies), engine)
+    target = _report_dir(out_dir, no_reports, as_json)
+    if resume and target is None:
+        raise click.UsageError("--resume needs the report directory that holds the journal "
+                               "(drop --no-reports, or give --out with --json)")
+    if figures_dir is not None:
+        from batcert.reports.write import check_output_dir
+        check_output_dir(figures_dir)
+    clock.lap("inputs")
+    journal = None
+    if target is not None:
+        journal = journal_path(target, sweep_stem(_planned(plan)))
+    with console.progress("sweeping") as bar:
+        result = run_sweep(plan, journal, resume, workers, scheduler, _counter(bar))
+    clock.lap(f"engine ({len(result.points)} variants)")
+    _deliver(result, console.sweep_summary, target, fmts, as_json)
+    finish_journal(journal)
+    _figures(result, figures_dir)
+    clock.lap("reports")
+    clock.report()
+    sys.exit(0)
+
+
+def _planned(plan):
+    """A result-like stand-in with what the report's file name is made of."""
+    from types import SimpleNamespace
+    return SimpleNamespace(design=None, protocol=plan.base.protocol.id, axes=plan.axes,
+                           bat_path=plan.base.bat.path)
+
+
+@main.command(epilog=DESIGN_EXIT_CODES + """
+
+\b
+Examples:
+  batcert design bats/aluminium-34.yaml -p ncaa-bbcor --solve wall --range 100%:250%
+  batcert design bbcor-alloy-34 -p ncaa-bbcor --solve hoop_frequency --range 1200Hz:3000Hz""")
+@click.argument("bat", shell_complete=_complete("bat"))
+@click.option("--protocol", "-p", "protocol", required=True, shell_complete=_complete("protocol"),
+              help="Shipped protocol id or protocol YAML path (it must set a limit).")
+@click.option("--solve", "parameter", required=True, metavar="PARAM",
+              help="The parameter to solve for (the names of `batcert sweep`).")
+@click.option("--range", "range_text", default=None, metavar="A:B",
+              help="Where to look, with units or as percent of nominal [default: 50%:150%].")
+@click.option("--points", type=click.IntRange(3, 1001), default=9, show_default=True,
+              help="Points of the margin curve that brackets the roots.")
+@click.option("--tolerance", default=None, help="Locate the root to within this (with its "
+              "unit, e.g. '0.001 mm') [default: the parameter's own, see docs/sweeps.md].")
+@_scale_options
+@FIGURES_OPTION
+@_output_options("design result")
+@_guard
+def design(bat, protocol, parameter, range_text, points, tolerance, workers, scheduler,
+           figures_dir, engine, out_dir, formats, no_reports, as_json):
+    """Find the value of one parameter of BAT at which the protocol's metric meets its limit
+    (bracketed root finding on the engine), with the margin curve."""
+    from batcert.commands.sweep import run_design
+    fmts = _formats(formats)
+    target = _report_dir(out_dir, no_reports, as_json)
+    clock = _Clock()
+    with console.progress("designing") as bar:
+        result = run_design(bat, protocol, parameter, range_text, engine, points, tolerance,
+                            _counter(bar), workers, scheduler)
+    clock.lap("engine")
+    _deliver(result, console.sweep_summary, target, fmts, as_json)
+    _figures(result, figures_dir)
+    clock.lap("reports")
+    clock.report()
+    sys.exit(0 if result.design.roots else 1)
 
 
 @main.command("list", epilog=CHECK_EXIT_CODES + """

@@ -48,6 +48,7 @@ class progress:
         self.description = description
         self._live: Any = None
         self._task: Any = None
+        self._bar: Any = None
 
     def __enter__(self) -> progress:
         if _terminal(sys.stderr) and not _Settings.quiet:
@@ -62,6 +63,21 @@ class progress:
     def update(self, text: str) -> None:
         if self._live is not None:
             self._live.update(self._task, description=f"{self.description}: {text}")
+
+    def count(self, done: int, total: int, what: str = "variants") -> None:
+        """A bar of ``done`` of ``total`` (with the rate and the time left)."""
+        if self._live is None:
+            return
+        if self._bar is None:
+            from rich.progress import BarColumn, MofNCompleteColumn, TimeRemainingColumn
+            self._live.stop()
+            from rich.progress import Progress, TextColumn, TimeElapsedColumn
+            self._live = Progress(TextColumn("{task.description}"), BarColumn(),
+                                  MofNCompleteColumn(), TextColumn(what), TimeElapsedColumn(),
+                                  TimeRemainingColumn(), console=_console(True), transient=True)
+            self._live.start()
+            self._bar = self._task = self._live.add_task(self.description, total=total)
+        self._live.update(self._task, completed=done, total=total)
 
     def __exit__(self, *exc) -> None:
         if self._live is not None:
@@ -278,6 +294,23 @@ def league_summary(result, paths: Sequence[Any]) -> None:
                     [[r["id"], r["value"], r["limit"], r["badge"], r["margin"], r["note"]]
                      for r in b["rules"]], [False, True, True, False, True, False]))
         _warnings(b["warnings"])
+    _wrote(paths)
+
+
+def sweep_summary(result, paths: Sequence[Any]) -> None:
+    """Terminal view of a sweep or design study: the headline, the table per variant (up to
+    40 rows; the reports hold more) and the design's answer."""
+    from batcert.reports.sweep_view import headline, sweep_view
+    view = sweep_view(result, charts=False)
+    _emit([(view["title"], "bold")])
+    _emit([(f"  {headline(result)}", "")])
+    t = view["summary"]
+    if len(t.rows) > 40:
+        step = -(-len(t.rows) // 40)
+        t = Table(t.headers, t.rows[::step], t.numeric)
+        _emit([(f"  (every {step}th variant shown; the reports hold all)", "dim")])
+    table(t)
+    _warnings(result.warnings)
     _wrote(paths)
 
 

@@ -181,7 +181,7 @@ _US: dict[str, tuple[str, float]] = {
 }
 DASH = "\u2014"  # how an empty or undefined value is shown, everywhere
 _SI_LABEL = {"length": "m", "mass": "kg", "moi": "kg m²", "speed": "m/s", "angular_speed": "rad/s",
-             "force": "N", "frequency": "Hz"}
+             "force": "N", "frequency": "Hz", "density": "kg/m³", "modulus": "Pa", "time": "s"}
 
 
 @dataclass(frozen=True)

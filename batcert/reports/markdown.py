@@ -13,6 +13,7 @@ if TYPE_CHECKING:
     from batcert.results.compare import ComparisonResult
     from batcert.results.league import LeagueResult
     from batcert.results.run import RunResult
+    from batcert.results.sweep import SweepResult
 
 _CELL_SPECIALS = re.compile(r"([\\`*\[\]|<>]|(?<!\w)_|_(?!\w))")
 _TEXT_SPECIALS = re.compile(r"([\\`*\[\]<>])")
@@ -59,3 +60,8 @@ def comparison_markdown(result: ComparisonResult) -> str:
 def league_markdown(result: LeagueResult) -> str:
     from batcert.reports.league_view import league_view
     return render_template("league.md.j2", league_view(result), FILTERS)
+
+
+def sweep_markdown(result: SweepResult) -> str:
+    from batcert.reports.sweep_view import sweep_view
+    return render_template("sweep.md.j2", sweep_view(result, charts=False), FILTERS)

@@ -1,0 +1,103 @@
+"""``batcert sweep`` and ``batcert design``: a protocol run on variants of a bat or a test.
+
+Every input is loaded and every variant checked before anything runs (:meth:`Plan.check`).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+from collections.abc import Callable
+from dataclasses import replace
+from pathlib import Path
+
+from batcert.commands.inputs import load_bat_any, load_protocol_any
+from batcert.results.sweep import SweepResult
+from batcert.runner.runner import check_applicable
+from batcert.sweeps.execute import Journal, execute, sweep_key
+from batcert.sweeps.sweep import Plan, collect, nominal_run
+from batcert.sweeps.variants import PARAMETERS, Case, ParameterError, parse_vary, read_range
+
+MAX_AXES = 2
+
+
+def _now() -> str:
+    return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+
+
+def plan_sweep(bat: str, protocol: str, varies: list[str], engine: str = "flexible",
+               points: int | None = None) -> Plan:
+    """Load the bat and the protocol, read every ``--vary`` and check every variant can be
+    made (a :class:`ParameterError` otherwise, before any work)."""
+    if not varies:
+        raise ParameterError("give a parameter to vary: --vary PARAM=START:STOP:N "
+                             f"({', '.join(PARAMETERS)})")
+    if len(varies) > MAX_AXES:
+        raise ParameterError(f"at most {MAX_AXES} --vary options (a grid)")
+    loaded = load_bat_any(bat)
+    pin = load_protocol_any(protocol)
+    check_applicable(pin.protocol, loaded.built)
+    base = Case(loaded.built.spec, pin.protocol)
+    axes = []
+    for text in varies:
+        name, spec = parse_vary(text)
+        nominal = PARAMETERS[name].nominal(base, loaded.built)
+        axes.append(read_range(name, spec, nominal, points))
+    plan = Plan(base, loaded.built, pin.ball, engine, tuple(axes), _now())
+    plan.check()
+    return plan
+
+
+def journal_path(out_dir: Path, stem: str) -> Path:
+    return out_dir / f"{stem}.partial.jsonl"
+
+
+def run_sweep(plan: Plan, journal_at: Path | None = None, resume: bool = False,
+              workers: int = 1, scheduler: str | None = None,
+              on_progress: Callable[[int, int], None] | None = None) -> SweepResult:
+    """Evaluate every variant (resuming a journal when asked) and collect the result; the
+    journal is removed once the result is complete."""
+    journal, done = None, {}
+    if journal_at is not None:
+        journal = Journal(journal_at, sweep_key(plan), plan.created)
+        if resume:
+            done = journal.load()
+            plan = replace(plan, created=journal.created)
+    rows = execute(plan, journal, done, workers, scheduler, on_progress)
+    result = collect(plan, rows, nominal_run(plan))
+    return result
+
+
+def finish_journal(journal_at: Path | None) -> None:
+    """The reports are written: the journal has served."""
+    if journal_at is not None:
+        Journal(journal_at, "", "").remove()
+
+
+DEFAULT_RANGE = "50%:150%"
+DEFAULT_POINTS = 9
+
+
+def run_design(bat: str, protocol: str, parameter: str, range_text: str | None = None,
+               engine: str = "flexible", points: int = DEFAULT_POINTS,
+               tolerance: str | None = None, on_progress=None, workers: int = 1,
+               scheduler: str | None = None) -> SweepResult:
+    """The margin curve of ``parameter`` over the range, and every value where the protocol's
+    metric meets its limit (:func:`batcert.sweeps.design.solve`)."""
+    from batcert.sweeps.design import solve
+    from batcert.sweeps.variants import lookup_parameter, read_value
+    param = lookup_parameter(parameter)
+    tol = param.tolerance
+    if tolerance is not None:
+        tol, _ = read_value(tolerance, param, None)
+        if not tol > 0:
+            raise ParameterError(f"--tolerance {tolerance!r}: must be above zero")
+    plan = plan_sweep(bat, protocol, [f"{parameter}={range_text or DEFAULT_RANGE}"], engine,
+                      points)
+    if plan.base.protocol.limit is None:
+        raise ParameterError(f"protocol {plan.base.protocol.id!r} sets no limit: there is "
+                             "nothing to design to")
+    if len(plan.axes[0].values) < 2:
+        raise ParameterError("--range needs two ends, A:B")
+    curve = run_sweep(plan, workers=workers, scheduler=scheduler, on_progress=on_progress)
+    curve.design = solve(plan, curve, tol)
+    return curve

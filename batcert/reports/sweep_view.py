@@ -1,0 +1,298 @@
+"""The sweep and design report: everything its Markdown and HTML show, formatted once.
+
+:func:`sweep_view` turns a :class:`~batcert.results.sweep.SweepResult` into tables of display
+cells and the figures (:func:`sweep_figures`, also written by ``--figures``); the templates
+``sweep.md.j2`` and ``sweep.html.j2`` only arrange them.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from batcert.reports import format as fmt
+from batcert.reports.compare_view import VERDICT_BADGES, badge
+from batcert.reports.figure import Figure, LineFigure
+from batcert.reports.svg import Point, Series, VLine
+from batcert.reports.table import Table
+from batcert.results.sweep import SweepAxis, SweepResult
+from batcert.units import Display
+
+MAX_ROWS = 400  # table rows shown in a report; the JSON holds every variant
+METRIC_PLOTS = {"exit_speed": ("Exit speed", "m/s"), "cor": ("Ball-bat COR", "-"),
+                "bpf": ("BPF", "-"), "besr": ("BESR", "-"), "bbcor": ("BBCOR", "-"),
+                "collision_efficiency": ("Collision efficiency e_A", "-")}
+
+
+def display_unit(axis: SweepAxis) -> tuple[str, float]:
+    """The unit a parameter is shown in and its SI factor: moduli in GPa, walls and
+    diameters in mm, the rest in their SI unit."""
+    if axis.dimension == "modulus":
+        return "GPa", 1e9
+    if axis.dimension == "length":
+        return "mm", 1e-3
+    return axis.unit, 1.0
+
+
+def axis_value(axis: SweepAxis, value: float) -> Display:
+    """A parameter value in its display unit, with its percent of nominal (or US units)."""
+    pct = f"{value / axis.nominal * 100:.4g} % of nominal" if axis.nominal else None
+    unit, factor = display_unit(axis)
+    us = None
+    if axis.dimension in ("length", "mass", "moi", "speed", "angular_speed"):
+        us = fmt.quantity(value, axis.dimension, 4).us
+    return Display(f"{value / factor:.4g} {unit}" if unit != "-" else f"{value:.4g}", pct or us)
+
+
+def axis_label(axis: SweepAxis) -> str:
+    return f"{axis.name} [{display_unit(axis)[0]}]"
+
+
+def _x(axis: SweepAxis, values: list[float]) -> list[float]:
+    factor = display_unit(axis)[1]
+    return [v / factor for v in values]
+
+
+def _groups(result: SweepResult) -> list[tuple[str, list[int]]]:
+    """The variants of each line of a figure: all of them (one axis), or one group per value
+    of the second axis (a grid), each in order of the first axis."""
+    n = len(result.points)
+    if len(result.axes) == 1:
+        return [("", list(range(n)))]
+    second = result.axes[1]
+    return [(f"{second.name} {axis_value(second, v).si}",
+             [i for i in range(n) if result.points[i][1] == v]) for v in second.values]
+
+
+def _series(result: SweepResult, values: list[float | None], name: str) -> list[Series]:
+    first = result.axes[0]
+    out = []
+    for label, idx in _groups(result):
+        xs = _x(first, [result.points[i][0] for i in idx])
+        ys = [values[i] for i in idx]
+        out.append(Series(" ".join(x for x in (name, label) if x) or result.metric,
+                          xs, [float("nan") if y is None else y for y in ys]))
+    return out
+
+
+def sweep_figures(result: SweepResult) -> list[Figure]:
+    """The protocol's metric, every metric per condition, the sweet spot and COP (with Eq. 7's
+    rigid sweet spot where defined) and the mass properties, against the first parameter."""
+    first = result.axes[0]
+    x_label = axis_label(first)
+    metric = fmt.metric_name(result.metric)
+    figs: list[Figure] = []
+    limit = [] if result.limit is None else [(result.limit + result.tolerance,
+                                              f"limit {result.limit + result.tolerance:g}")]
+    series = _series(result, result.series["value"], "nominal barrel"
+                     if any(v is not None for v in result.series["value_low"]) else "")
+    if any(v is not None for v in result.series["value_low"]) and len(result.axes) == 1:
+        series += _series(result, result.series["value_low"], "plausible barrel: low")
+        series += _series(result, result.series["value_high"], "plausible barrel: high")
+    nominal = []
+    if result.nominal is not None and result.nominal.value is not None:
+        nominal = [Point(_x(first, [first.nominal])[0], result.nominal.value, len(series) - 1, "as measured")]
+    figs.append(LineFigure(
+        "metric", f"{metric} ({result.aggregate}) against {first.name}", x_label,
+        f"{metric} [{'m/s' if result.metric == 'exit-speed' else '-'}]", series,
+        caption=f"The protocol's result against {first.name}"
+        + ("; the dashed line is its limit" if limit else "")
+        + ("; the circle is the nominal bat with its measurements" if nominal else "") + ".",
+        hlines=limit, points=nominal, point_legend="nominal bat as measured" if nominal else "",
+        vlines=[VLine(_x(first, [first.nominal])[0], "nominal")]))
+    for key, (word, unit) in METRIC_PLOTS.items():
+        lines = [s for c in result.conditions for s in _series(result, c.series[key], c.name)]
+        figs.append(LineFigure(key.replace("_", "-"), f"{word} against {first.name}", x_label,
+                               f"{word} [{unit}]", lines,
+                               caption=f"{word} at the impact point of each condition."))
+    spots = []
+    for c in result.conditions:
+        spots += _series(result, c.series["sweet_spot"], f"{c.name}: sweet spot")
+        spots += _series(result, c.series["cop"], f"{c.name}: COP")
+        if c.rigid_applies:
+            spots += _series(result, c.series["rigid_sweet_spot"],
+                             f"{c.name}: rigid sweet spot (Eq. 7)")
+    figs.append(LineFigure("sweet-spot", f"Sweet spot and COP against {first.name}", x_label,
+                           "distance from the pivot [m]", spots,
+                           caption="Sweet spot (maximum exit speed), centre of percussion "
+                           "(Eq. 4) and, where the speeds are fixed and the bat swings, the "
+                           "rigid-bat sweet spot (Smith 2001 Eq. 7)."))
+    if any(a.changes != "protocol" for a in result.axes):
+        figs.append(LineFigure("mass", f"Mass against {first.name}", x_label, "mass [kg]",
+                               _series(result, result.series["mass"], "mass")))
+        figs.append(LineFigure("moi", f"MOI about the pivot against {first.name}", x_label,
+                               "MOI [kg m²]", _series(result, result.series["moi_pivot"], "MOI")))
+    if result.design is not None:
+        margin = result.series["margin"]
+        roots = [VLine(_x(first, [r.value])[0], f"root {axis_value(first, r.value).si}")
+                 for r in result.design.roots]
+        figs.append(LineFigure("margin", f"Margin to the limit against {first.name}", x_label,
+                               f"margin [{'m/s' if result.metric == 'exit-speed' else '-'}]",
+                               _series(result, margin, "margin"), hlines=[(0.0, "limit")],
+                               vlines=roots, caption="Margin = limit + tolerance - value; "
+                               "the protocol passes where it is at least zero."))
+    return figs
+
+
+def _rows(result: SweepResult) -> list[int]:
+    n = len(result.points)
+    if n <= MAX_ROWS:
+        return list(range(n))
+    step = -(-n // MAX_ROWS)
+    return sorted(set(range(0, n, step)) | {n - 1})
+
+
+def _summary_table(result: SweepResult) -> Table:
+    m = result.metric
+    ranged = any(v is not None for v in result.series["value_low"])
+    head = [axis_label(a) for a in result.axes] + [fmt.metric_word(m)]
+    head += ["plausible barrel"] if ranged else []
+    head += ["margin", "verdict"] if result.limit is not None else []
+    head += ["mass [kg]", "MOI [kg m²]", "hoop [Hz]"]
+    rows = []
+    for i in _rows(result):
+        s = result.series
+        row: list[Any] = [axis_value(a, result.points[i][k]) for k, a in enumerate(result.axes)]
+        if result.errors[i]:
+            rows.append(row + [f"no result: {result.errors[i]}"] + [""] * (len(head) - len(row) - 1))
+            continue
+        row.append(fmt.metric_value(s["value"][i], m))
+        if ranged:
+            row.append(f"{fmt.metric_value(s['value_low'][i], m).si} to "
+                       f"{fmt.metric_value(s['value_high'][i], m).si}")
+        if result.limit is not None:
+            row += [fmt.metric_value(s["margin"][i], m, signed_=True),
+                    badge(VERDICT_BADGES, result.verdicts[i])]
+        row += [fmt.plain(s["mass"][i], 4), fmt.plain(s["moi_pivot"][i], 5),
+                fmt.plain(s["hoop_frequency"][i], 0)]
+        rows.append(row)
+    return Table(head, rows, [True] * len(head))
+
+
+def _condition_table(result: SweepResult, k: int) -> Table:
+    c = result.conditions[k]
+    keys = ["exit_speed", "cor", "bpf", "besr", "bbcor", "collision_efficiency",
+            "impact_location", "sweet_spot", "cop", "rigid_sweet_spot"]
+    head = [axis_label(a) for a in result.axes] + [
+        "exit speed [m/s]", "COR", "BPF", "BESR", "BBCOR", "e_A", "impact [m]",
+        "sweet spot [m]", "COP [m]", "Eq. 7 [m]"]
+    rows = []
+    for i in _rows(result):
+        if result.errors[i]:
+            continue
+        rows.append([axis_value(a, result.points[i][j]) for j, a in enumerate(result.axes)]
+                    + [fmt.plain(c.series[key][i], 2 if key == "exit_speed" else 4)
+                       for key in keys])
+    return Table(head, rows, [True] * len(head))
+
+
+def _facts(result: SweepResult) -> list[tuple[str, str]]:
+    facts = [("Bat", f"{result.bat} ({result.bat_path})"),
+             ("Protocol", f"{result.protocol}: {result.protocol_title}"),
+             ("Metric", f"{fmt.metric_name(result.metric)}, {fmt.aggregate_word(result.aggregate)}"
+                        f" of {len(result.conditions)} condition"
+                        f"{'s' if len(result.conditions) != 1 else ''}"),
+             ("Limit", fmt.DASH if result.limit is None else
+              f"{fmt.metric_value(result.limit, result.metric)} (tolerance {result.tolerance:g})")]
+    for a in result.axes:
+        facts.append((f"Varied: {a.name}", f"{len(a.values)} values, "
+                      f"{axis_value(a, a.values[0])} to {axis_value(a, a.values[-1])}; nominal "
+                      f"{axis_value(a, a.nominal).si}"))
+    facts += [("Variants", f"{len(result.points)} ({sum(e is None for e in result.errors)} with "
+                           "a result)"),
+              ("Engine", result.engine + "".join(f"; {k} {v}" for k, v in
+                                                 result.engine_settings.items())),
+              ("Date", fmt.created(result.created)), ("batcert version", result.batcert_version)]
+    return facts
+
+
+def design_statement(result: SweepResult) -> str:
+    """The design's answer in words: where the protocol passes and where the limit is met."""
+    assert result.design is not None
+    axis, roots = result.axes[0], result.design.roots
+    name = axis.name
+    ms = [m for m in result.series["margin"] if m is not None]
+
+    def at(x: float) -> str:
+        d = axis_value(axis, x)
+        return f"{d.si} ({d.us})" if d.us else d.si
+
+    lo, hi = axis.values[0], axis.values[-1]
+    if not roots:
+        if not ms:
+            return f"No {name} in the range has a result."
+        word = "passes" if ms[0] >= 0 else "fails"
+        return (f"No {name} from {at(lo)} to {at(hi)} meets the limit: the protocol {word} "
+                f"over the whole range (margin {min(ms):+.4g} to {max(ms):+.4g}); widen the "
+                "range with --range")
+    edges = [lo] + [r.value for r in roots] + [hi]
+    first_passes = not roots[0].passes_above
+    parts = []
+    for k in range(len(edges) - 1):
+        if (k % 2 == 0) == first_passes:
+            a = "the start of the range searched, " if k == 0 else ""
+            b = ", the end of the range searched" if k == len(edges) - 2 else ""
+            parts.append(f"from {a}{at(edges[k])} to {at(edges[k + 1])}{b}")
+    text = (f"The protocol passes for {name} " + " and ".join(parts)) if parts else \
+        f"The protocol passes for no {name} in the range"
+    return text + f"; the limit is met at {', '.join(at(r.value) for r in roots)}"
+
+
+def headline(result: SweepResult) -> str:
+    """One sentence: where the verdict changes, or the metric's range."""
+    m, vals = result.metric, result.series["value"]
+    got = [(i, v) for i, v in enumerate(vals) if v is not None]
+    if not got:
+        return "No variant has a result."
+    lo = min(got, key=lambda t: t[1])
+    hi = max(got, key=lambda t: t[1])
+    text = (f"{fmt.metric_name(m)} ranges from {fmt.metric_value(lo[1], m)} to "
+            f"{fmt.metric_value(hi[1], m)} over the {len(result.points)} variants")
+    if result.limit is not None:
+        n_pass = sum(v == "pass" for v in result.verdicts)
+        text += f"; {n_pass} of {len(result.points)} pass"
+    if result.design is not None:
+        text += ". " + design_statement(result)
+    return text + "."
+
+
+def sweep_view(result: SweepResult, charts: bool = True) -> dict[str, Any]:
+    """Everything the sweep report shows, formatted; the templates only arrange it."""
+    from markupsafe import Markup
+
+    from batcert.reports.figure import svg_of
+    figs = sweep_figures(result)
+    nominal = None
+    if result.nominal is not None:
+        n = result.nominal
+        nominal = [("value as measured", str(fmt.metric_value(n.value, result.metric))
+                    + (f", {n.verdict}" if n.verdict else "")),
+                   ("mass: geometry / measured", f"{n.geometry_mass:.4f} kg / "
+                    + (f"{n.measured_mass:.4f} kg" if n.measured_mass else fmt.DASH)),
+                   ("corrections of the measurements", n.reconciliation)]
+    design = None
+    if result.design is not None:
+        d = result.design
+        first = result.axes[0]
+        design = {"statement": design_statement(result) + ".",
+                  "table": Table(["root", "bracket", "evaluations", "passes"],
+                                 [[axis_value(first, r.value),
+                                   f"{axis_value(first, r.bracket[0]).si} to "
+                                   f"{axis_value(first, r.bracket[1]).si}",
+                                   str(r.evaluations), "above" if r.passes_above else "below"]
+                                  for r in d.roots], [True, False, True, False]),
+                  "tolerance": axis_value(first, d.tolerance).si}
+    title = ("Design" if result.design else "Sweep") + f": {result.bat}, {result.protocol}, " \
+        + " x ".join(a.name for a in result.axes)
+    return {
+        "result": result, "title": title, "page_title": f"{title} \u2014 batcert",
+        "headline": headline(result), "facts": _facts(result), "notes": result.notes,
+        "nominal": nominal, "design": design, "warnings": result.warnings,
+        "summary": _summary_table(result),
+        "conditions": [(c.name, _condition_table(result, k))
+                       for k, c in enumerate(result.conditions)],
+        "shown_rows": len(_rows(result)), "variants": len(result.points),
+        "figures": [{"svg": Markup(svg_of(f)) if charts else "", "caption": f.caption,
+                     "title": f.title} for f in figs],
+        "errors": [(i, e) for i, e in enumerate(result.errors) if e][:50],
+        "inputs": result.inputs, "date": fmt.created(result.created),
+    }

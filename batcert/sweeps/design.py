@@ -1,0 +1,53 @@
+"""Inverse design: the value of one parameter at which a protocol's metric meets its limit.
+
+The margin (limit + tolerance - value) is first swept over the range (the margin curve, a
+:mod:`~batcert.sweeps.sweep` of ``points`` variants); every sign change between neighbours
+brackets a root, which Brent's method (:func:`scipy.optimize.brentq`) then locates on the engine
+to within the parameter's tolerance. The margin need not be monotonic: every root in the range
+is found, between points of the curve, and the passing intervals are stated. A root between two
+points of the curve that both pass (or both fail) is missed, so the curve should be fine enough
+for the margin's shape; the report shows it.
+"""
+
+from __future__ import annotations
+
+from batcert.results.sweep import DesignResult, DesignRoot, SweepResult
+from batcert.sweeps.sweep import Chunk, Plan, evaluate_chunk
+from batcert.sweeps.variants import ParameterError
+
+
+def margin_at(plan: Plan, value: float) -> float:
+    """The margin of one variant (the engine solves it now)."""
+    chunk = Chunk(0, plan.base, plan.built, plan.ball, plan.engine, (plan.axes[0].name,),
+                  ((0, (value,)),), plan.created)
+    row = evaluate_chunk(chunk)[0]
+    if row["error"] is not None:
+        raise ParameterError(f"{plan.axes[0].name} = {value:.6g}: the model has no result "
+                             f"({row['error']})")
+    return float(row["margin"])
+
+
+def solve(plan: Plan, curve: SweepResult, tolerance: float) -> DesignResult:
+    """Every root of the margin in the range of ``curve`` (the margin swept over ``plan``'s
+    axis), located to ``tolerance`` [SI]."""
+    from scipy.optimize import brentq
+
+    if curve.limit is None:
+        raise ParameterError(f"protocol {curve.protocol!r} sets no limit: there is nothing to "
+                             "design to")
+    xs = [p[0] for p in curve.points]
+    ms = curve.series["margin"]
+    roots = []
+    for (x0, m0), (x1, m1) in zip(zip(xs, ms, strict=True), zip(xs[1:], ms[1:], strict=True),
+                                  strict=False):
+        if m0 is None or m1 is None or (m0 >= 0) == (m1 >= 0):
+            continue
+        calls = [0]
+
+        def f(x: float, calls: list[int] = calls) -> float:
+            calls[0] += 1
+            return margin_at(plan, x)
+
+        root = float(brentq(f, x0, x1, xtol=tolerance, rtol=1e-12, maxiter=100))
+        roots.append(DesignRoot(root, [x0, x1], calls[0], passes_above=m1 >= 0))
+    return DesignResult(plan.axes[0].name, tolerance, roots, [xs[0], xs[-1]])

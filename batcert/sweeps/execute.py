@@ -1,0 +1,172 @@
+"""Where a sweep's chunks run, and its journal: in this process, in worker processes
+(``--workers N``) or on a dask.distributed cluster (``--scheduler ADDRESS``), each finished chunk
+appended to a journal so that ``--resume`` continues an interrupted sweep without redoing it.
+
+Every chunk is the same whatever runs it (:mod:`batcert.sweeps.sweep`), and a row is stored
+as JSON, which round-trips every float exactly, so a serial, parallel, distributed or resumed
+sweep gives the same numbers.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+from collections.abc import Callable
+from concurrent.futures import Future, ProcessPoolExecutor, as_completed
+from dataclasses import dataclass
+from pathlib import Path
+
+from batcert.errors import OutputError, UsageProblem
+from batcert.sweeps.sweep import Chunk, Plan, Row, evaluate_chunk
+
+
+class SchedulerUnavailable(UsageProblem):
+    """``--scheduler`` without dask.distributed installed, or a scheduler that cannot be reached."""
+
+
+@dataclass
+class Journal:
+    """A sweep's finished chunks on disk: a header line (the sweep's key and timestamp), then
+    one JSON line per finished chunk, each flushed and synced as it is written. A line cut
+    short by an interruption is ignored on resuming."""
+
+    path: Path
+    key: str
+    created: str
+
+    def load(self) -> dict[int, list[Row]]:
+        """The chunks already finished, by index; refuses a journal of another sweep."""
+        try:
+            lines = self.path.read_text(encoding="utf-8").splitlines()
+        except FileNotFoundError:
+            return {}
+        except OSError as exc:
+            raise OutputError(self.path, exc.strerror or str(exc)) from None
+        done: dict[int, list[Row]] = {}
+        for k, line in enumerate(lines):
+            try:
+                entry = json.loads(line)
+            except json.JSONDecodeError:
+                continue  # a line cut short by the interruption
+            if k == 0:
+                if entry.get("key") != self.key:
+                    raise UsageProblem(f"{self.path} holds a sweep with other inputs, "
+                                       "parameters or engine; remove it or run without --resume")
+                self.created = entry["created"]
+                continue
+            done[int(entry["chunk"])] = entry["rows"]
+        return done
+
+    def start(self, done: dict[int, list[Row]]) -> None:
+        """Write the header and the chunks kept (a fresh journal when ``done`` is empty)."""
+        lines = [json.dumps({"key": self.key, "created": self.created})]
+        lines += [json.dumps({"chunk": k, "rows": rows}, allow_nan=False)
+                  for k, rows in sorted(done.items())]
+        self._write("w", "\n".join(lines) + "\n")
+
+    def add(self, chunk: int, rows: list[Row]) -> None:
+        self._write("a", json.dumps({"chunk": chunk, "rows": rows}, allow_nan=False) + "\n")
+
+    def remove(self) -> None:
+        try:
+            self.path.unlink()
+        except FileNotFoundError:
+            pass
+
+    def _write(self, mode: str, text: str) -> None:
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            with open(self.path, mode, encoding="utf-8") as f:
+                f.write(text)
+                f.flush()
+                os.fsync(f.fileno())
+        except OSError as exc:
+            raise OutputError(self.path, exc.strerror or str(exc)) from None
+
+
+def sweep_key(plan: Plan) -> str:
+    """What makes two sweeps the same: the input files, the varied values, the engine and
+    the batcert version."""
+    from batcert import __version__
+    b, p = plan.base.bat, plan.base.protocol
+    data = [b.sha256, p.sha256, plan.ball.sha256, plan.engine, __version__,
+            [[a.name, list(a.values)] for a in plan.axes]]
+    return hashlib.sha256(json.dumps(data).encode()).hexdigest()
+
+
+def run_chunks(chunks: list[Chunk], on_done: Callable[[Chunk, list[Row]], None],
+               workers: int = 1, scheduler: str | None = None) -> None:
+    """Evaluate every chunk, calling ``on_done(chunk, rows)`` as each finishes (in completion
+    order). ``workers`` > 1 uses that many processes; ``scheduler`` a dask.distributed
+    scheduler's address."""
+    if not chunks:
+        return
+    if scheduler is not None:
+        _on_dask(chunks, on_done, scheduler)
+    elif workers > 1 and len(chunks) > 1:
+        _on_processes(chunks, on_done, workers)
+    else:
+        for chunk in chunks:
+            on_done(chunk, evaluate_chunk(chunk))
+
+
+def _on_processes(chunks: list[Chunk], on_done, workers: int) -> None:
+    import multiprocessing
+    # spawn: the parent may run a progress display's thread, which fork would copy mid-state
+    pool = ProcessPoolExecutor(max_workers=min(workers, len(chunks)),
+                               mp_context=multiprocessing.get_context("spawn"))
+    try:
+        futures: dict[Future, Chunk] = {pool.submit(evaluate_chunk, c): c for c in chunks}
+        for fut in as_completed(futures):
+            on_done(futures[fut], fut.result())
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _on_dask(chunks: list[Chunk], on_done, address: str) -> None:
+    try:
+        from distributed import Client
+        from distributed import as_completed as dask_completed
+    except ImportError:
+        raise SchedulerUnavailable("--scheduler needs dask.distributed: pip install "
+                                   "'batcert[distributed]'") from None
+    try:
+        client = Client(address, timeout="10s", set_as_default=False)
+    except OSError as exc:
+        raise SchedulerUnavailable(f"cannot reach the dask scheduler at {address}: "
+                                   f"{exc}") from None
+    try:
+        futures = client.map(evaluate_chunk, chunks, pure=False)
+        where = {f.key: c for f, c in zip(futures, chunks, strict=True)}
+        for fut in dask_completed(futures):
+            on_done(where[fut.key], fut.result())
+    finally:
+        client.close()
+
+
+def execute(plan: Plan, journal: Journal | None = None, done: dict[int, list[Row]] | None = None,
+            workers: int = 1, scheduler: str | None = None,
+            on_progress: Callable[[int, int], None] | None = None) -> list[Row]:
+    """Every variant's row: the chunks already ``done`` (read from ``journal`` to resume) and
+    the rest, run where asked, each added to ``journal`` as it finishes.
+    ``on_progress(variants_done, variants)`` follows the work."""
+    chunks = plan.chunks()
+    done = {k: v for k, v in (done or {}).items() if k < len(chunks)}
+    if journal is not None:
+        journal.start(done)
+    total = sum(len(c.points) for c in chunks)
+    finished = [sum(len(r) for r in done.values())]
+    if on_progress:
+        on_progress(finished[0], total)
+
+    def on_done(chunk: Chunk, rows: list[Row]) -> None:
+        done[chunk.index] = rows
+        if journal is not None:
+            journal.add(chunk.index, rows)
+        finished[0] += len(rows)
+        if on_progress:
+            on_progress(finished[0], total)
+
+    run_chunks([c for c in chunks if c.index not in done], on_done, workers, scheduler)
+    return [row for k in sorted(done) for row in done[k]]

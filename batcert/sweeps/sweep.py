@@ -1,0 +1,230 @@
+"""Sweeps: one protocol run on every variant of a bat or a protocol, in engine batches.
+
+A :class:`Plan` holds the nominal case, the varied axes and every grid point. Its points are cut
+into :class:`Chunk` s of :data:`CHUNK_SIZE` variants, the same whatever runs them, so a chunk's
+variants share engine batches (:func:`batcert.runner.runner.run_protocols`) and the results do
+not depend on the worker count or the scheduler. :func:`evaluate_chunk` (a top-level function:
+processes and dask workers pickle it) turns a chunk into rows, one per variant, of plain JSON
+numbers; :func:`collect` turns the rows into a :class:`~batcert.results.sweep.SweepResult`.
+Where the chunks run is :mod:`batcert.sweeps.execute`'s business.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+from typing import Any
+
+from batcert import __version__
+from batcert.errors import InputError
+from batcert.model.build import BuiltBat, build_bat
+from batcert.results.run import RunResult
+from batcert.results.sweep import (
+    CONDITION_FIELDS,
+    VARIANT_FIELDS,
+    NominalRun,
+    SweepAxis,
+    SweepCondition,
+    SweepResult,
+)
+from batcert.specs.ball import BallSpec
+from batcert.specs.resolve import display_path
+from batcert.sweeps.variants import Axis, Case, ParameterError
+from batcert.units import si_unit
+
+CHUNK_SIZE = 4  # variants per chunk: the unit of work of a worker, and of resuming
+Row = dict[str, Any]
+
+
+@dataclass(frozen=True)
+class Chunk:
+    """Variants to evaluate together: their indices and grid points."""
+
+    index: int
+    base: Case
+    built: BuiltBat  # the nominal bat (nominal values of the parameters)
+    ball: BallSpec
+    engine: str
+    names: tuple[str, ...]  # the varied parameters
+    points: tuple[tuple[int, tuple[float, ...]], ...]  # (variant index, value per axis [SI])
+    created: str
+
+
+@dataclass(frozen=True)
+class Plan:
+    base: Case
+    built: BuiltBat
+    ball: BallSpec
+    engine: str
+    axes: tuple[Axis, ...]
+    created: str
+
+    @property
+    def points(self) -> list[tuple[float, ...]]:
+        """Every grid point, the first axis outermost (row-major)."""
+        return list(itertools.product(*(a.values for a in self.axes)))
+
+    @property
+    def impacts_per_variant(self) -> int:
+        return len(self.base.protocol.conditions)
+
+    def chunks(self) -> list[Chunk]:
+        pts = list(enumerate(self.points))
+        names = tuple(a.name for a in self.axes)
+        return [Chunk(k // CHUNK_SIZE, self.base, self.built, self.ball, self.engine, names,
+                      tuple(pts[k:k + CHUNK_SIZE]), self.created)
+                for k in range(0, len(pts), CHUNK_SIZE)]
+
+    def check(self) -> None:
+        """Every variant can be made (before any work): a value a parameter cannot take for
+        this bat or protocol raises :class:`ParameterError`."""
+        changes = {a.parameter.changes for a in self.axes}
+        if {"geometry", "measured"} <= changes:
+            raise ParameterError("a geometric or material parameter and a measured property "
+                                 "cannot vary together: a geometric variant's mass properties "
+                                 "come from its geometry, not from measurements")
+        if len({a.name for a in self.axes}) < len(self.axes):
+            raise ParameterError("each parameter may be varied once")
+        for point in self.points:
+            variant_case(self.base, self.built, [a.name for a in self.axes], point)
+
+
+def variant_case(base: Case, built: BuiltBat, names, point) -> Case:
+    from batcert.sweeps.variants import PARAMETERS
+    case = base
+    for name, value in zip(names, point, strict=True):
+        case = PARAMETERS[name].apply(case, built, value)
+    return case
+
+
+def _row(index: int, result: RunResult) -> Row:
+    mp, barrel = result.mass_properties, result.barrel
+    row: Row = {"index": index, "error": None, "value": result.value, "margin": result.margin,
+                "verdict": result.verdict, "mass": mp.mass, "cg": mp.cg,
+                "moi_pivot": mp.moi_pivot, "cop": mp.cop,
+                "value_low": barrel.value_low if barrel else None,
+                "value_high": barrel.value_high if barrel else None,
+                "hoop_frequency": barrel.hoop_frequency if barrel else None,
+                "warnings": result.warnings, "settings": result.engine_settings,
+                "conditions": {c.name: {k: getattr(c, k) for k in CONDITION_FIELDS}
+                               for c in result.conditions}}
+    return row
+
+
+def _failed(index: int, reason: str) -> Row:
+    return {"index": index, "error": reason}
+
+
+def _reason(exc: InputError) -> str:
+    return "; ".join(p.message for p in exc.problems)
+
+
+def run_cases(cases: list[tuple[int, Case]], ball: BallSpec, engine_name: str, created: str
+              ) -> list[Row]:
+    """Build each case's bat and run its protocol, all in shared engine batches; a case that
+    cannot be built or solved gets a row with its reason (and the others still run)."""
+    from batcert.engines import get_engine
+    from batcert.runner.runner import check_applicable, run_protocols
+    engine = get_engine(engine_name)
+    rows: dict[int, Row] = {}
+    jobs = []
+    for i, case in cases:
+        try:
+            built = build_bat(case.bat)
+            check_applicable(case.protocol, built)
+        except InputError as exc:
+            rows[i] = _failed(i, _reason(exc))
+            continue
+        jobs.append((i, built, case.protocol))
+    try:
+        results = run_protocols([(b, p, ball) for _, b, p in jobs], engine, created)
+        rows.update({i: _row(i, r) for (i, _, _), r in zip(jobs, results, strict=True)})
+    except InputError:  # one variant has no finite solution: run them one by one to say which
+        for i, b, p in jobs:
+            try:
+                rows[i] = _row(i, run_protocols([(b, p, ball)], engine, created)[0])
+            except InputError as exc:
+                rows[i] = _failed(i, _reason(exc))
+    return [rows[i] for i, _ in cases]
+
+
+def evaluate_chunk(chunk: Chunk) -> list[Row]:
+    """The rows of one chunk's variants (top-level, so that process and dask workers can run
+    it)."""
+    cases = [(i, variant_case(chunk.base, chunk.built, chunk.names, point))
+             for i, point in chunk.points]
+    return run_cases(cases, chunk.ball, chunk.engine, chunk.created)
+
+
+# ---- collecting ---------------------------------------------------------------------------
+
+def _notes(plan: Plan) -> list[str]:
+    changes = {a.parameter.changes for a in plan.axes}
+    bat = plan.base.bat
+    notes = [f"{a.name}: {a.parameter.doc}" for a in plan.axes]
+    if "geometry" in changes and bat.measured is not None:
+        notes.append("The variants' mass properties come from their geometry (profile, wall "
+                     "and material): the measured values (mass, CG, MOI, frequencies, barrel "
+                     "compression) were measured on the nominal bat and apply only to it. The "
+                     "nominal bat as measured is shown for contrast, with the corrections its "
+                     "measurements made to the geometry.")
+    if "geometry" in changes and bat.construction == "hollow":
+        notes.append("Without a measured hoop frequency or compression the variants' barrels "
+                     "are uncalibrated: each carries its range over the plausible barrel "
+                     "(value_low to value_high).")
+    if "measured" in changes:
+        notes.append("The other measured properties stay as the bat file gives them; the model "
+                     "is reconciled (and calibrated) to each variant's values.")
+    return notes
+
+
+def nominal_run(plan: Plan) -> NominalRun | None:
+    """The nominal bat with its measurements, when the sweep's variants drop them."""
+    if not any(a.parameter.changes == "geometry" for a in plan.axes) \
+            or plan.base.bat.measured is None:
+        return None
+    row = run_cases([(0, plan.base)], plan.ball, plan.engine, plan.created)[0]
+    from batcert.model.mass import mass_properties
+    mp = mass_properties(plan.built, plan.base.protocol.pivot)
+    return NominalRun(row.get("value"), row.get("margin"), row.get("verdict"),
+                      mp.reconciliation, mp.corrections, mp.geometry_mass, mp.measured_mass,
+                      row["error"])
+
+
+def collect(plan: Plan, rows: list[Row], nominal: NominalRun | None) -> SweepResult:
+    """The sweep's result from every variant's row (in any order)."""
+    by_index = {r["index"]: r for r in rows}
+    points = plan.points
+    ordered = [by_index[i] for i in range(len(points))]
+    p = plan.base.protocol
+    series = {k: [r.get(k) for r in ordered] for k in VARIANT_FIELDS}
+    conditions = []
+    for c in p.conditions:
+        got = [r["conditions"][c.name] if r["error"] is None else {} for r in ordered]
+        rigid = any(g.get("rigid_sweet_spot") is not None for g in got)
+        conditions.append(SweepCondition(c.name, rigid,
+                                         {k: [g.get(k) for g in got] for k in CONDITION_FIELDS}))
+    warnings = sorted({w for r in ordered for w in r.get("warnings", [])
+                       if not w.startswith("the barrel was not calibrated")})
+    failed = sum(r["error"] is not None for r in ordered)
+    if failed:
+        warnings.insert(0, f"{failed} of {len(ordered)} variants have no result (see errors)")
+    settings: dict[str, Any] = next((r["settings"] for r in ordered if r["error"] is None), {})
+    axes = [SweepAxis(a.name, a.parameter.dimension,
+                      si_unit(a.parameter.dimension) if a.parameter.dimension else "-",
+                      a.parameter.changes, a.parameter.doc, a.nominal, list(a.values),
+                      a.percent) for a in plan.axes]
+    bat = plan.base.bat
+    inputs = [{"role": "bat", "name": bat.name, "path": display_path(bat.path),
+               "sha256": bat.sha256},
+              {"role": "protocol", "name": p.id, "path": display_path(p.path), "sha256": p.sha256},
+              {"role": "ball", "name": plan.ball.name, "path": display_path(plan.ball.path),
+               "sha256": plan.ball.sha256}]
+    return SweepResult(
+        bat=bat.name, bat_path=display_path(bat.path), protocol=p.id, protocol_title=p.title,
+        metric=p.metric, aggregate=p.aggregate, limit=p.limit.max if p.limit else None,
+        tolerance=p.limit.tolerance if p.limit else 0.0, engine=plan.engine,
+        engine_settings=settings, axes=axes, points=[list(x) for x in points], series=series,
+        verdicts=[r.get("verdict") for r in ordered], errors=[r["error"] for r in ordered],
+        conditions=conditions, nominal=nominal, notes=_notes(plan), warnings=warnings,
+        inputs=inputs, batcert_version=__version__, created=plan.created)

@@ -222,6 +222,64 @@ def _check_sweet_spot_moves(result: ComparisonResult, claim: ClaimSpec) -> tuple
     return ("supported" if ok else "not-supported"), "; ".join(parts) + "."
 
 
+def _figure(result: ComparisonResult, claim: ClaimSpec):
+    return next((f for f in result.figures if f.id == claim.figure), None)
+
+
+def _trend(values: list[float | None], xs: list[float], nominal: float) -> float | None:
+    """Change of a quantity from the nominal value of the parameter down to its smallest value
+    (the thin-wall side): value at the smallest x minus value at the x nearest nominal."""
+    pts = [(x, v) for x, v in zip(xs, values, strict=True) if v is not None]
+    if len(pts) < 2:
+        return None
+    low = min(pts)
+    near = min(pts, key=lambda t: abs(t[0] - nominal))
+    return None if low[0] >= near[0] else low[1] - near[1]
+
+
+def _check_opposite_trends(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, str]:
+    fig = _figure(result, claim)
+    if fig is None:
+        return "not-testable", f"The figure {claim.figure!r} was not produced."
+    a, b = claim.metrics or ["", ""]
+    parts, ok, tested = [], True, 0
+    for bat in fig.bats:
+        da = _trend(bat.series[a], bat.values, bat.nominal)
+        db = _trend(bat.series[b], bat.values, bat.nominal)
+        if da is None or db is None:
+            continue
+        tested += 1
+        ok &= (da > claim.tolerance and db < -claim.tolerance) or \
+            (da < -claim.tolerance and db > claim.tolerance)
+        parts.append(f"{bat.label}: from the nominal {fig.parameter} to the thinnest, {a} "
+                     f"changes by {da:+.4f} and {b} by {db:+.4f}")
+    if not tested:
+        return "not-testable", f"The figure has no values below the nominal {fig.parameter}."
+    return ("supported" if ok else "not-supported"), "; ".join(parts) + "."
+
+
+def _check_figure_sweet_spot(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, str]:
+    fig = _figure(result, claim)
+    if fig is None:
+        return "not-testable", f"The figure {claim.figure!r} was not produced."
+    parts, ok, tested = [], True, 0
+    for bat in fig.bats:
+        pts = [(s, r) for s, r in zip(bat.series.get("sweet_spot", []),
+                                      bat.series.get("rigid_sweet_spot", []), strict=True)
+               if s is not None and r is not None]
+        if len(pts) < 2:
+            continue
+        tested += 1
+        model = max(s for s, _ in pts) - min(s for s, _ in pts)
+        rigid = max(r for _, r in pts) - min(r for _, r in pts)
+        ok &= model <= claim.factor * rigid
+        parts.append(f"{bat.label}: over {len(pts)} speeds where Eq. 7 is defined the sweet "
+                     f"spot moves {model * 100:.1f} cm, Eq. 7 {rigid * 100:.1f} cm")
+    if not tested:
+        return "not-testable", "The figure has fewer than two speeds where Eq. 7 is defined."
+    return ("supported" if ok else "not-supported"), "; ".join(parts) + "."
+
+
 @dataclass(frozen=True)
 class ClaimCheck:
     """One way of testing a study's claim against a comparison: name, meaning, function."""
@@ -250,12 +308,24 @@ CLAIM_CHECKS: dict[str, ClaimCheck] = {c.name: c for c in (
     ClaimCheck("sweet-spot-moves-less-than-rigid", "Across conditions with fixed speeds the "
                "sweet spot moves less than `factor` times the movement of the rigid sweet spot "
                "(Smith 2001 Eq. 7).", _check_sweet_spot_moves),
+    ClaimCheck("opposite-trends", "In the study figure `figure`, from the nominal value of "
+               "its parameter down to the smallest, the two `metrics` change in opposite "
+               "directions, each by more than `tolerance`, for every bat.",
+               _check_opposite_trends),
+    ClaimCheck("figure-sweet-spot-less-than-rigid", "In the study figure `figure` (a speed "
+               "swept), the sweet spot moves less than `factor` times the rigid sweet spot "
+               "(Smith 2001 Eq. 7) over the speeds where Eq. 7 is defined, for every bat.",
+               _check_figure_sweet_spot),
 )}
 
 
 def evaluate_claim(result: ComparisonResult, claim: ClaimSpec) -> ClaimResult:
     """Test one study claim against the comparison; the status never defaults to supported."""
     wanted = [*claim.protocols, *(claim.compare_with or [])]
+    if claim.figure is not None and _figure(result, claim) is None:
+        status, text = "not-testable", f"The study figure {claim.figure!r} was not produced."
+        return ClaimResult(claim.id, claim.statement, claim.source or "", claim.check, status,
+                           text)
     missing = [p for p in wanted if p not in {x.protocol for x in result.protocols}]
     if missing:
         status, text = "not-testable", f"Protocols not in this comparison: {', '.join(missing)}."

@@ -26,6 +26,7 @@ from batcert.results.compare import (
     ConditionComparison,
     ProtocolComparison,
     Spread,
+    StudyFigure,
 )
 from batcert.results.run import RunResult
 
@@ -106,7 +107,7 @@ def _protocol_comparison(runs: list[RunResult], labels: list[str], ref: int
 def compare(runs: Sequence[Sequence[RunResult]], reference: int = 0, *,
             bats: Sequence[BatEntry] | None = None, title: str = "", study: str | None = None,
             study_reference: str = "", study_notes: str = "", claims: Sequence[ClaimSpec] = (),
-            created: str | None = None) -> ComparisonResult:
+            created: str | None = None, figures: Sequence[StudyFigure] = ()) -> ComparisonResult:
     """Compare bats under protocols. ``runs[i][j]`` is bat ``i`` under protocol ``j``; every bat
     must have been run under the same protocols, in the same order, with one engine.
 
@@ -159,6 +160,7 @@ def compare(runs: Sequence[Sequence[RunResult]], reference: int = 0, *,
         engine=first.engine, engine_settings=first.engine_settings, inputs=list(inputs.values()),
         batcert_version=__version__,
         created=created or _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"))
+    result.figures = list(figures)
     result.claims = [evaluate_claim(result, c) for c in claims]
     result.findings = findings(result)
     return result

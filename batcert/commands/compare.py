@@ -69,8 +69,24 @@ def run_comparison(bats: list[str], protocols: list[str], study: str | None = No
     entries = [BatEntry(lab, b.built.spec.name, display_path(b.path), b.built.spec.sha256,
                         b.built.model.length, b.built.model.construction,
                         b.built.model.material.name) for lab, b in zip(labels, loaded, strict=True)]
-    return compare(runs, ref, bats=entries, title=spec.title if spec else "",
+    figures = _figures(spec, loaded, labels, ref, proto_inputs, engine, flat[0].created) \
+        if spec else []
+    return compare(runs, ref, bats=entries, title=spec.title if spec else "", figures=figures,
                    study=spec.id if spec else None,
                    study_reference=spec.reference if spec else "",
                    study_notes=(spec.notes or "") if spec else "",
                    claims=spec.claims if spec else ())
+
+
+def _figures(spec: StudySpec, loaded: list[LoadedBat], labels: list[str], ref: int,
+             proto_inputs: list[ProtocolInputs], engine: str, created: str) -> list:
+    """The study's figures (each a sweep of its bats on one protocol condition)."""
+    from batcert.sweeps.study_figures import study_figure
+    by_id = {p.protocol.id: p for p in proto_inputs}
+    out = []
+    for f in spec.figures:
+        bats = [(lab, b.built) for i, (lab, b) in enumerate(zip(labels, loaded, strict=True))
+                if f.bats == "all" or i != ref]
+        p = by_id[f.protocol]
+        out.append(study_figure(f, bats, p.protocol, p.ball, engine, created))
+    return out

@@ -65,8 +65,11 @@ def load_protocol_any(value: str, relative_to: Path | None = None) -> ProtocolIn
 
 def load_study_any(value: str) -> StudySpec:
     from batcert.specs.study import load_study  # not on a run's path
+    from batcert.sweeps.study_figures import check_figures
 
-    return load_study(resolve("study", value))
+    spec = load_study(resolve("study", value))
+    check_figures(spec)
+    return spec
 
 
 def load_league_any(value: str) -> LeagueSpec:

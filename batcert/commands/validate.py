@@ -26,7 +26,10 @@ _LOADERS = {
 
 
 def _study_fits(spec) -> None:
-    """A study's inputs load, and each of its protocols fits each of its default bats."""
+    """A study's inputs load, its figures name parameters and quantities that exist, and each
+    of its protocols fits each of its default bats."""
+    from batcert.sweeps.study_figures import check_figures
+    check_figures(spec)
     protocols, bats = study_inputs(spec)
     for bat in bats:
         for p in protocols:

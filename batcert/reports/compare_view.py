@@ -11,6 +11,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from batcert.reports import format as fmt
+from batcert.reports.figure import BarFigure, Figure, LineFigure, svg_of
 from batcert.reports.table import Badge, Table
 from batcert.results.compare import ComparisonResult, ProtocolComparison
 
@@ -40,32 +41,32 @@ def _pct_for_chart(p: float | None) -> float | None:
     return None if p is None else round(p * 100, 4) + 0.0
 
 
-def _charts(result: ComparisonResult, p: ProtocolComparison) -> list[dict[str, Any]]:
+def _protocol_figures(result: ComparisonResult, p: ProtocolComparison) -> list[BarFigure]:
     """The protocol's figures: metric per condition, P per condition, sweet spot and COP."""
-    from markupsafe import Markup
-
-    from batcert.reports import charts, svg
+    from batcert.reports import svg
     labels, compared = [b.label for b in result.bats], result.compared
     metric = fmt.metric_word(p.metric)
     cats = [c.name for c in p.conditions]
     width = chart_width(cats, len(labels), least=500)  # two charts side by side
     out = []
     unit = " [m/s]" if p.metric == "exit-speed" else " [-]"
-    out.append({"svg": Markup(charts.bar_chart(
-        cats, [svg.BarSeries(lab, [c.bats[lab].value for c in p.conditions]) for lab in labels],
-        title=f"{metric} per condition", y_label=metric + unit, limit=p.limit,
-        value_format="{:.2f}" if p.metric == "exit-speed" else "{:.3f}", width=width)),
-        "caption": f"{metric} of each bat in each condition"
-                   + (f"; the dashed line is the protocol limit "
-                      f"{fmt.metric_value(p.limit, p.metric)}." if p.limit is not None else ".")})
+    slug = fmt.slugify(p.protocol)
+    out.append(BarFigure(
+        f"{slug}--metric", f"{metric} per condition", metric + unit, cats,
+        [svg.BarSeries(lab, [c.bats[lab].value for c in p.conditions]) for lab in labels],
+        caption=f"{metric} of each bat in each condition"
+        + (f"; the dashed line is the protocol limit "
+           f"{fmt.metric_value(p.limit, p.metric)}." if p.limit is not None else "."),
+        limit=p.limit, value_format="{:.2f}" if p.metric == "exit-speed" else "{:.3f}",
+        width=width))
     pcts = [svg.BarSeries(lab, [_pct_for_chart(c.bats[lab].relative) for c in p.conditions])
             for lab in compared]
     if any(v for s in pcts for v in s.values):
-        out.append({"svg": Markup(charts.bar_chart(
-            cats, pcts, title=f"P against {result.reference}", y_label="P [%]",
-            value_format="{:+.2f}", width=width)),
-            "caption": f"Relative performance P of each bat against the reference bat "
-                       f"{result.reference} (P = 0), per condition."})
+        out.append(BarFigure(
+            f"{slug}--relative", f"P against {result.reference}", "P [%]", cats, pcts,
+            caption=f"Relative performance P of each bat against the reference bat "
+                    f"{result.reference} (P = 0), per condition.", value_format="{:+.2f}",
+            width=width))
     spots = []
     for lab in labels:  # each bat's sweet spot next to its COP
         spots.append(svg.BarSeries(f"{lab}: sweet spot",
@@ -75,15 +76,61 @@ def _charts(result: ComparisonResult, p: ProtocolComparison) -> list[dict[str, A
     edge_text = (f" In {edge} of {len(p.conditions) * len(labels)} bat-conditions the sweet spot "
                  "lies on the search window's edge: the bar shows the edge, not a located "
                  "maximum." if edge else "")
-    out.append({"svg": Markup(charts.bar_chart(
-        cats, spots, title="Sweet spot and centre of percussion per condition",
-        y_label="distance from the pivot [m]", value_format="{:.3f}", baseline=None,
-        width=chart_width(cats, 2 * len(labels)))),
-        "caption": "Sweet spot (maximum exit speed) and centre of percussion of each bat, in "
-                   f"metres from the pivot ({fmt.quantity(p.pivot, 'length')} from the knob); "
-                   "the axis does not start at zero. The table above gives inches from the tip."
-                   + edge_text})
+    out.append(BarFigure(
+        f"{slug}--sweet-spot", "Sweet spot and centre of percussion per condition",
+        "distance from the pivot [m]", cats, spots,
+        caption="Sweet spot (maximum exit speed) and centre of percussion of each bat, in "
+                f"metres from the pivot ({fmt.quantity(p.pivot, 'length')} from the knob); "
+                "the axis does not start at zero. The table above gives inches from the tip."
+                + edge_text, value_format="{:.3f}", baseline=None,
+        width=chart_width(cats, 2 * len(labels))))
     return out
+
+
+QUANTITY_WORDS = {"sweet_spot": "sweet spot", "rigid_sweet_spot": "rigid sweet spot (Eq. 7)",
+                  "cop": "COP", "bpf": "BPF", "besr": "BESR", "bbcor": "BBCOR",
+                  "exit_speed": "exit speed", "cor": "COR", "metric_value": "metric",
+                  "collision_efficiency": "e_A", "impact_location": "impact point"}
+
+
+def study_figures(result: ComparisonResult) -> list[LineFigure]:
+    """The study's figures: each quantity of each bat against the swept parameter."""
+    from batcert.reports.svg import Series
+    from batcert.units import si_unit
+    out = []
+    for f in result.figures:
+        pct = f.percent is not None
+        series = [Series(f"{b.label}: {QUANTITY_WORDS.get(m, m)}",
+                         f.percent if pct and f.percent else b.values,
+                         [float("nan") if v is None else v for v in b.series[m]])
+                  for b in f.bats for m in f.metrics]
+        unit = "% of nominal" if pct else (si_unit(f.dimension) if f.dimension else "-")
+        located = {"sweet_spot", "rigid_sweet_spot", "cop", "impact_location"}
+        y = "distance from the pivot [m]" if set(f.metrics) <= located else \
+            ", ".join(QUANTITY_WORDS.get(m, m) for m in f.metrics) + " [-]"
+        out.append(LineFigure(
+            f"study--{fmt.slugify(f.id)}", f.title, f"{f.parameter} [{unit}]", y, series,
+            caption=f"Protocol {f.protocol}, condition {f.condition}, {f.parameter} varied "
+                    "(the variants' mass properties come from their geometry when it "
+                    "varies; docs/sweeps.md)."))
+    return out
+
+
+def comparison_figures(result: ComparisonResult) -> list[Figure]:
+    """Every figure of the comparison report (what ``--figures`` writes)."""
+    out: list[Figure] = []
+    overview = _overview_figure(result)
+    if overview is not None:
+        out.append(overview)
+    for p in result.protocols:
+        out += _protocol_figures(result, p)
+    return out + study_figures(result)
+
+
+def _charts(result: ComparisonResult, p: ProtocolComparison) -> list[dict[str, Any]]:
+    from markupsafe import Markup
+    return [{"svg": Markup(svg_of(f)), "caption": f.caption}
+            for f in _protocol_figures(result, p)]
 
 
 def _values(result: ComparisonResult, p: ProtocolComparison, show_setup: bool) -> Table:
@@ -177,19 +224,27 @@ def _overview(result: ComparisonResult, charts: bool) -> dict[str, Any]:
         headers += [f"mean P: {lab}", "std of P", "range of P"]
     table = Table(headers, rows, [False, False] + [True] * (3 * len(compared)))
     chart = None
+    fig = _overview_figure(result) if charts else None
+    if fig is not None:
+        from markupsafe import Markup
+        chart = Markup(svg_of(fig))
+    return {"table": table, "chart": chart}
+
+
+def _overview_figure(result: ComparisonResult) -> BarFigure | None:
+    """Mean P of each compared bat under each protocol (None when every P is zero)."""
+    from batcert.reports import svg
+    compared = result.compared
     series_values = [[_pct_for_chart(p.relative_spread[lab].mean) for p in result.protocols]
                      for lab in compared]
-    if charts and any(v for s in series_values for v in s):
-        from markupsafe import Markup
-
-        from batcert.reports import charts, svg
-        cats = [p.protocol for p in result.protocols]
-        chart = Markup(charts.bar_chart(cats, [svg.BarSeries(lab, vals) for lab, vals in
-                                            zip(compared, series_values, strict=True)],
-                                     title=f"Mean P against {result.reference}",
-                                     y_label="mean P [%]", value_format="{:+.2f}",
-                                     width=chart_width(cats, len(compared))))
-    return {"table": table, "chart": chart}
+    if not any(v for s in series_values for v in s):
+        return None
+    cats = [p.protocol for p in result.protocols]
+    return BarFigure("overview", f"Mean P against {result.reference}", "mean P [%]", cats,
+                     [svg.BarSeries(lab, vals) for lab, vals in
+                      zip(compared, series_values, strict=True)],
+                     caption="Mean P of each bat under each protocol.", value_format="{:+.2f}",
+                     width=chart_width(cats, len(compared)))
 
 
 def _mass(result: ComparisonResult) -> Table:
@@ -208,8 +263,22 @@ def _mass(result: ComparisonResult) -> Table:
                   "COP from pivot"], rows, [False] + [True] * 5)
 
 
+def _figure_table(result: ComparisonResult, k: int) -> Table:
+    """A study figure's numbers: the parameter, then each bat's quantities."""
+    f = result.figures[k]
+    head = [f"{f.parameter} [% of nominal]" if f.percent else f.parameter]
+    head += [f"{b.label}: {QUANTITY_WORDS.get(m, m)}" for b in f.bats for m in f.metrics]
+    n = len(f.bats[0].values) if f.bats else 0
+    rows = []
+    for i in range(n):
+        x = f"{f.percent[i]:.4g}" if f.percent else f"{f.bats[0].values[i]:.4g}"
+        rows.append([x] + [fmt.plain(b.series[m][i], 4) for b in f.bats for m in f.metrics])
+    return Table(head, rows, [True] * len(head))
+
+
 def comparison_view(result: ComparisonResult, charts: bool = True) -> dict[str, Any]:
     """Everything the comparison report shows, formatted; ``charts`` adds the SVG figures."""
+    from markupsafe import Markup
     labels = [b.label for b in result.bats]
     title = result.title or " vs ".join(labels)
     protos = ", ".join(p.protocol for p in result.protocols)
@@ -244,6 +313,9 @@ def comparison_view(result: ComparisonResult, charts: bool = True) -> dict[str, 
         "notes": fmt.paragraphs(result.study_notes), "warnings": list(result.warnings),
         "overview": _overview(result, charts) if result.compared else None,
         "protocols": [_protocol_view(result, p, charts) for p in result.protocols],
+        "study_figures": [{"svg": Markup(svg_of(f)) if charts else "", "title": f.title,
+                           "caption": f.caption, "table": _figure_table(result, k)}
+                          for k, f in enumerate(study_figures(result))],
         "mass": _mass(result),
         "engine": Table(["Setting", "Value"], [[k, v] for k, v in
                                                fmt.flatten(result.engine_settings)]),

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from batcert.results.serialise import Serialisable
@@ -111,6 +111,29 @@ class ClaimResult:
 
 
 @dataclass
+class StudyFigureBat:
+    label: str
+    nominal: float  # the bat's nominal value of the parameter [SI]
+    values: list[float]  # the parameter's values for this bat [SI]
+    series: dict[str, list[float | None]]  # quantity -> one value per parameter value
+
+
+@dataclass
+class StudyFigure:
+    """A study figure: a parameter swept on one condition of a protocol, per bat."""
+
+    id: str
+    title: str
+    protocol: str
+    condition: str
+    parameter: str
+    dimension: str | None
+    percent: list[float] | None  # the values as percent of each bat's nominal, when so given
+    metrics: list[str]
+    bats: list[StudyFigureBat]
+
+
+@dataclass
 class ComparisonResult(Serialisable):
     title: str
     study: str | None
@@ -127,6 +150,7 @@ class ComparisonResult(Serialisable):
     inputs: list[dict[str, str]]  # role, name, path, sha256 of every input file
     batcert_version: str
     created: str
+    figures: list[StudyFigure] = field(default_factory=list)
 
     def protocol(self, pid: str) -> ProtocolComparison:
         return next(p for p in self.protocols if p.protocol == pid)

@@ -70,7 +70,25 @@ CLAIM_SCHEMA = Schema("study claim", (
     Field("location_tolerance", quantity("length", minimum=0.0), "Dead band on positions.",
           default=0.01),
     Field("factor", number(exclusive_minimum=0.0, maximum=1.0), "sweet-spot-moves-less-than-"
-          "rigid: largest accepted ratio of movements.", default=0.5),
+          "rigid and figure-sweet-spot-less-than-rigid: largest accepted ratio of movements.",
+          default=0.5),
+    Field("figure", text(), "Figure checks: the id of the study figure the check reads."),
+    Field("metrics", list_of(text(), min_items=2, max_items=2, describe="two metric names"),
+          "opposite-trends: the two metrics whose trends are compared."),
+))
+
+FIGURE_SCHEMA = Schema("study figure", (
+    Field("id", text(), "Short figure name (file names, claims' `figure`).", required=True),
+    Field("title", text(), "What the figure shows.", required=True),
+    Field("protocol", text(), "Protocol id (of this study) whose test the figure varies.",
+          required=True),
+    Field("condition", text(), "The protocol's condition that is run.", required=True),
+    Field("vary", text(), "PARAM=START:STOP:N, as `batcert sweep --vary`.", required=True),
+    Field("metrics", list_of(text(), min_items=1, describe="list of quantities"),
+          "Quantities plotted against the parameter (sweep names: bpf, besr, sweet_spot, "
+          "rigid_sweet_spot, cop, ...).", required=True),
+    Field("bats", choice("all", "compared"), "Every bat, or the bats compared with the "
+          "reference.", default="all"),
 ))
 
 STUDY_SCHEMA = Schema("study", (
@@ -85,6 +103,9 @@ STUDY_SCHEMA = Schema("study", (
           "reference."),
     Field("protocols", list_of(_protocol_entry(), min_items=1, describe="list of protocols"),
           "Protocols, in report order.", required=True),
+    Field("figures", list_of(section(FIGURE_SCHEMA), describe="list of figures"),
+          "Figures of the study: a parameter swept on a protocol's condition, per bat.",
+          default=[]),
     Field("claims", list_of(section(CLAIM_SCHEMA), describe="list of claims"),
           "The study's conclusions, each tested against the model's results.", default=[]),
 ))
@@ -104,6 +125,21 @@ class ClaimSpec:
     tolerance: float  # dead band on P [-]
     location_tolerance: float  # dead band on positions [m]
     factor: float  # sweet-spot-moves-less-than-rigid: largest accepted ratio [-]
+    figure: str | None = None  # figure checks: the study figure read
+    metrics: list[str] | None = None  # opposite-trends: the two metrics
+
+
+@dataclass(frozen=True)
+class FigureSpec:
+    """A study figure: a parameter swept on one condition of one of the study's protocols."""
+
+    id: str
+    title: str
+    protocol: str  # protocol id of this study
+    condition: str
+    vary: str  # PARAM=START:STOP:N
+    metrics: list[str]
+    bats: str  # all | compared
 
 
 @dataclass(frozen=True)
@@ -120,6 +156,7 @@ class StudySpec:
     protocols: tuple[ProtocolSpec, ...]  # resolved and validated, in study order
     bats: tuple[Path, ...]  # resolved default bats (may be empty)
     claims: tuple[ClaimSpec, ...]
+    figures: tuple[FigureSpec, ...] = ()
 
     @property
     def path(self) -> str:
@@ -188,6 +225,8 @@ def load_study(path: str | Path) -> StudySpec:
             if claim["check"] == "lower-than" and len(claim["protocols"]) != 2:
                 errors.add(lookup(data, "claims", i, "protocols")[0], f"claims[{i}].protocols",
                            "lower-than compares exactly two protocols: [lower, higher]")
+    if not nested:
+        _check_figures(v, protocols, data, errors)
     bats: list[Path] = []
     for i, b in enumerate(v["bats"] or []):
         try:
@@ -198,5 +237,34 @@ def load_study(path: str | Path) -> StudySpec:
     if problems:
         raise InputError(problems)
     claims = tuple(spec_from(ClaimSpec, c) for c in v["claims"] or [])
+    figures = tuple(spec_from(FigureSpec, f) for f in v["figures"] or [])
     return spec_from(StudySpec, {**v, "protocols": tuple(protocols), "bats": tuple(bats),
-                                 "claims": claims}, source=source)
+                                 "claims": claims, "figures": figures}, source=source)
+
+
+def _check_figures(v: dict, protocols: list[ProtocolSpec], data: Located,
+                   errors: Collector) -> None:
+    """A figure names a protocol and condition of the study; a figure claim names a figure of
+    the study. (Its parameter and quantities are checked against their registries by
+    :func:`batcert.sweeps.study_figures.check_figures`.)"""
+    by_id = {p.id: p for p in protocols}
+    for i, f in enumerate(v["figures"] or []):
+        def add(key: str, message: str, i: int = i) -> None:
+            errors.add(lookup(data, "figures", i, key)[0], f"figures[{i}].{key}", message)
+        p = by_id.get(f["protocol"])
+        if p is None:
+            add("protocol", f"{f['protocol']!r} is not a protocol of this study "
+                f"({', '.join(by_id)})")
+        elif f["condition"] not in [c.name for c in p.conditions]:
+            add("condition", f"protocol {p.id!r} has no condition {f['condition']!r} "
+                f"({', '.join(c.name for c in p.conditions)})")
+    ids = [f["id"] for f in v["figures"] or []]
+    for i, claim in enumerate(v["claims"] or []):
+        if claim["check"].startswith(("opposite-trends", "figure-")):
+            if claim["figure"] not in ids:
+                errors.add(lookup(data, "claims", i)[0], f"claims[{i}].figure",
+                           f"the {claim['check']} check needs `figure:`, the id of one of the "
+                           f"study's figures ({', '.join(ids) or 'none'})")
+        if claim["check"] == "opposite-trends" and not claim["metrics"]:
+            errors.add(lookup(data, "claims", i)[0], f"claims[{i}].metrics",
+                       "opposite-trends needs the two `metrics:` to compare")

@@ -527,7 +527,8 @@ def _counter(bar):
 \b
 Examples:
   batcert sweep bats/aluminium-34.yaml -p ncaa-bbcor --vary wall=60%:140%:9
-  batcert sweep ash-34 -p smith2001-bpf-sweet-spot.yaml --vary bat_angular_speed=0:60rad/s:13
+  batcert sweep ash-34 -p protocols/studies/smith2001-bpf-sweet-spot.yaml \
+      --vary bat_angular_speed=5rad/s:60rad/s:12
   batcert sweep aluminium-34 -p proposed --vary wall=80%:120%:5 --vary relative_speed=50:70m/s:3
   batcert sweep aluminium-34 -p ncaa-bbcor --vary wall=50%:150%:201 --workers 2 --resume
 
@@ -589,7 +590,7 @@ def _planned(plan):
 
 \b
 Examples:
-  batcert design bats/aluminium-34.yaml -p ncaa-bbcor --solve wall --range 100%:250%
+  batcert design bats/aluminium-34.yaml -p ncaa-bbcor --solve wall
   batcert design bbcor-alloy-34 -p ncaa-bbcor --solve hoop_frequency --range 1200Hz:3000Hz""")
 @click.argument("bat", shell_complete=_complete("bat"))
 @click.option("--protocol", "-p", "protocol", required=True, shell_complete=_complete("protocol"),

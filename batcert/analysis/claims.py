@@ -226,11 +226,11 @@ def _figure(result: ComparisonResult, claim: ClaimSpec):
     return next((f for f in result.figures if f.id == claim.figure), None)
 
 
-def _trend(values: list[float | None], xs: list[float], nominal: float) -> float | None:
+def _trend(values: list[float | None], xs: list[float], nominal: float | None) -> float | None:
     """Change of a quantity from the nominal value of the parameter down to its smallest value
     (the thin-wall side): value at the smallest x minus value at the x nearest nominal."""
     pts = [(x, v) for x, v in zip(xs, values, strict=True) if v is not None]
-    if len(pts) < 2:
+    if len(pts) < 2 or nominal is None:
         return None
     low = min(pts)
     near = min(pts, key=lambda t: abs(t[0] - nominal))

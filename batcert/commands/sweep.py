@@ -25,7 +25,7 @@ def _now() -> str:
 
 
 def plan_sweep(bat: str, protocol: str, varies: list[str], engine: str = "flexible",
-               points: int | None = None) -> Plan:
+               points: int | None = None, need_limit: bool = False) -> Plan:
     """Load the bat and the protocol, read every ``--vary`` and check every variant can be
     made (a :class:`ParameterError` otherwise, before any work)."""
     if not varies:
@@ -35,6 +35,9 @@ def plan_sweep(bat: str, protocol: str, varies: list[str], engine: str = "flexib
         raise ParameterError(f"at most {MAX_AXES} --vary options (a grid)")
     loaded = load_bat_any(bat)
     pin = load_protocol_any(protocol)
+    if need_limit and pin.protocol.limit is None:
+        raise ParameterError(f"protocol {pin.protocol.id!r} sets no limit: there is nothing to "
+                             "design to")
     check_applicable(pin.protocol, loaded.built)
     base = Case(loaded.built.spec, pin.protocol)
     axes = []
@@ -92,10 +95,7 @@ def run_design(bat: str, protocol: str, parameter: str, range_text: str | None =
         if not tol > 0:
             raise ParameterError(f"--tolerance {tolerance!r}: must be above zero")
     plan = plan_sweep(bat, protocol, [f"{parameter}={range_text or DEFAULT_RANGE}"], engine,
-                      points)
-    if plan.base.protocol.limit is None:
-        raise ParameterError(f"protocol {plan.base.protocol.id!r} sets no limit: there is "
-                             "nothing to design to")
+                      points, need_limit=True)
     if len(plan.axes[0].values) < 2:
         raise ParameterError("--range needs two ends, A:B")
     curve = run_sweep(plan, workers=workers, scheduler=scheduler, on_progress=on_progress)

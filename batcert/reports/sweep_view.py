@@ -89,7 +89,8 @@ def sweep_figures(result: SweepResult) -> list[Figure]:
         series += _series(result, result.series["value_low"], "plausible barrel: low")
         series += _series(result, result.series["value_high"], "plausible barrel: high")
     nominal = []
-    if result.nominal is not None and result.nominal.value is not None:
+    if result.nominal is not None and result.nominal.value is not None \
+            and first.nominal is not None:
         nominal = [Point(_x(first, [first.nominal])[0], result.nominal.value, len(series) - 1, "as measured")]
     figs.append(LineFigure(
         "metric", f"{metric} ({result.aggregate}) against {first.name}", x_label,
@@ -98,7 +99,8 @@ def sweep_figures(result: SweepResult) -> list[Figure]:
         + ("; the dashed line is its limit" if limit else "")
         + ("; the circle is the nominal bat with its measurements" if nominal else "") + ".",
         hlines=limit, points=nominal, point_legend="nominal bat as measured" if nominal else "",
-        vlines=[VLine(_x(first, [first.nominal])[0], "nominal")]))
+        vlines=[] if first.nominal is None else [VLine(_x(first, [first.nominal])[0],
+                                                        "nominal")]))
     for key, (word, unit) in METRIC_PLOTS.items():
         lines = [s for c in result.conditions for s in _series(result, c.series[key], c.name)]
         figs.append(LineFigure(key.replace("_", "-"), f"{word} against {first.name}", x_label,
@@ -196,11 +198,12 @@ def _facts(result: SweepResult) -> list[tuple[str, str]]:
     for a in result.axes:
         facts.append((f"Varied: {a.name}", f"{len(a.values)} values, "
                       f"{axis_value(a, a.values[0])} to {axis_value(a, a.values[-1])}; nominal "
-                      f"{axis_value(a, a.nominal).si}"))
+                      + (fmt.DASH if a.nominal is None else axis_value(a, a.nominal).si)))
     facts += [("Variants", f"{len(result.points)} ({sum(e is None for e in result.errors)} with "
                            "a result)"),
               ("Engine", result.engine + "".join(f"; {k} {v}" for k, v in
-                                                 result.engine_settings.items())),
+                                                 result.engine_settings.items()
+                                                 if k != "engine")),
               ("Date", fmt.created(result.created)), ("batcert version", result.batcert_version)]
     return facts
 

@@ -113,7 +113,7 @@ class ClaimResult:
 @dataclass
 class StudyFigureBat:
     label: str
-    nominal: float  # the bat's nominal value of the parameter [SI]
+    nominal: float | None  # the bat's nominal value of the parameter [SI], if given
     values: list[float]  # the parameter's values for this bat [SI]
     series: dict[str, list[float | None]]  # quantity -> one value per parameter value
 

@@ -34,7 +34,7 @@ class SweepAxis:
     unit: str  # SI unit of the values
     changes: str  # geometry | measured | protocol
     doc: str
-    nominal: float  # the nominal bat's or protocol's value [SI]
+    nominal: float | None  # the nominal bat's or protocol's value [SI] (None: not given)
     values: list[float]  # [SI]
     percent: bool  # given on the command line as percent of nominal
 

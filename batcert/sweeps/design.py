@@ -27,6 +27,13 @@ def margin_at(plan: Plan, value: float) -> float:
     return float(row["margin"])
 
 
+ROUNDING = 1e-12  # a margin this close to zero is taken as zero (it passes): rounding, not a root
+
+
+def _passes(margin: float) -> bool:
+    return margin >= -ROUNDING
+
+
 def solve(plan: Plan, curve: SweepResult, tolerance: float) -> DesignResult:
     """Every root of the margin in the range of ``curve`` (the margin swept over ``plan``'s
     axis), located to ``tolerance`` [SI]."""
@@ -40,7 +47,7 @@ def solve(plan: Plan, curve: SweepResult, tolerance: float) -> DesignResult:
     roots = []
     for (x0, m0), (x1, m1) in zip(zip(xs, ms, strict=True), zip(xs[1:], ms[1:], strict=True),
                                   strict=False):
-        if m0 is None or m1 is None or (m0 >= 0) == (m1 >= 0):
+        if m0 is None or m1 is None or _passes(m0) == _passes(m1):
             continue
         calls = [0]
 
@@ -49,5 +56,5 @@ def solve(plan: Plan, curve: SweepResult, tolerance: float) -> DesignResult:
             return margin_at(plan, x)
 
         root = float(brentq(f, x0, x1, xtol=tolerance, rtol=1e-12, maxiter=100))
-        roots.append(DesignRoot(root, [x0, x1], calls[0], passes_above=m1 >= 0))
+        roots.append(DesignRoot(root, [x0, x1], calls[0], passes_above=_passes(m1)))
     return DesignResult(plan.axes[0].name, tolerance, roots, [xs[0], xs[-1]])

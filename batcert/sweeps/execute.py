@@ -12,6 +12,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import re
 from collections.abc import Callable
 from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
@@ -124,6 +125,10 @@ def _on_processes(chunks: list[Chunk], on_done, workers: int) -> None:
         pool.shutdown(wait=True, cancel_futures=True)
 
 
+_ADDRESS = re.compile(r"^(?:(?:tcp|tls|ucx|ws|wss|inproc)://)?[\w.\-\[\]:]+/?$")
+CONNECT_TIMEOUT = "10s"
+
+
 def _on_dask(chunks: list[Chunk], on_done, address: str) -> None:
     try:
         from distributed import Client
@@ -131,9 +136,12 @@ def _on_dask(chunks: list[Chunk], on_done, address: str) -> None:
     except ImportError:
         raise SchedulerUnavailable("--scheduler needs dask.distributed: pip install "
                                    "'batcert[distributed]'") from None
+    if not _ADDRESS.match(address):
+        raise SchedulerUnavailable(f"--scheduler {address!r} is not a scheduler address "
+                                   "(e.g. tcp://10.0.0.5:8786)")
     try:
-        client = Client(address, timeout="10s", set_as_default=False)
-    except OSError as exc:
+        client = Client(address, timeout=CONNECT_TIMEOUT)  # the default client while it runs
+    except (OSError, ValueError, TimeoutError) as exc:
         raise SchedulerUnavailable(f"cannot reach the dask scheduler at {address}: "
                                    f"{exc}") from None
     try:

@@ -37,7 +37,7 @@ def study_figure(spec: FigureSpec, bats: list[tuple[str, BuiltBat]], protocol: P
         series = result.conditions[0].series
         out.append(StudyFigureBat(label, axis.nominal, list(axis.values),
                                   {m: series[m] for m in spec.metrics}))
-        if axis.percent:
+        if axis.percent and axis.nominal:
             percent = [v / axis.nominal * 100 for v in axis.values]
     dim = PARAMETERS[name].dimension
     return StudyFigure(spec.id, spec.title, p.id, spec.condition, name, dim, percent,

@@ -43,7 +43,7 @@ class Parameter:
     dimension: str | None  # a batcert.units dimension, None for a plain number
     changes: str  # geometry | measured | protocol
     doc: str
-    nominal: Callable[[Case, BuiltBat], float]  # the nominal value [SI]
+    nominal: Callable[[Case, BuiltBat], float | None]  # the nominal value [SI], if any
     apply: Callable[[Case, BuiltBat, float], Case]  # the case with the value [SI]
     bounds: tuple[float, float]  # accepted values [SI] (the bat file's field ranges)
     tolerance: float  # default tolerance of `batcert design` [SI]
@@ -138,17 +138,18 @@ def _explicit(case: Case, built: BuiltBat) -> MeasuredSpec:
 
 
 def _measured(field: str):
-    def nominal(case: Case, built: BuiltBat) -> float:
-        value = getattr(_explicit(case, built), field)
-        if value is None:
-            raise ParameterError(f"{case.bat.name!r} has no measured {field}: give the values "
-                                 "as absolute quantities")
-        return float(value)
-
-    def apply(case: Case, built: BuiltBat, value: float) -> Case:
+    def nominal(case: Case, built: BuiltBat) -> float | None:
         if field == "hoop_frequency":
             _hollow(case, field)
+            m = case.bat.measured
+            return None if m is None or m.hoop_frequency is None else m.hoop_frequency
+        return float(getattr(_explicit(case, built), field))
+
+    def apply(case: Case, built: BuiltBat, value: float) -> Case:
         changes: dict[str, Any] = {field: value}
+        m = case.bat.measured
+        if field == "hoop_frequency" and m is not None:  # the mass properties stay as given
+            return replace(case, bat=replace(case.bat, measured=replace(m, **changes)))
         return replace(case, bat=replace(case.bat, measured=replace(_explicit(case, built),
                                                                    **changes)))
     return nominal, apply
@@ -157,19 +158,33 @@ def _measured(field: str):
 # ---- test speeds --------------------------------------------------------------------------
 
 def _uses(c: ConditionSpec, field: str) -> bool:
+    """The condition sets this speed and its body moves: a stationary set-up stays
+    stationary (a sweep of the pitch speed does not pitch at a stationary-ball test)."""
     if field == "relative_speed":
         return c.relative_speed is not None
     if field == "bat_angular_speed":
-        return c.relative_speed is None
-    return c.pitch_speed is not None  # pitch_speed
+        return c.relative_speed is None and ((c.bat_angular_speed or 0) > 0
+                                              or (c.bat_speed or 0) > 0)
+    return c.pitch_speed is not None and c.pitch_speed > 0  # pitch_speed
+
+
+def _settable(c: ConditionSpec, field: str) -> bool:
+    """The condition has this speed among its explicit fields (moving or at rest)."""
+    if field == "relative_speed":
+        return c.relative_speed is not None
+    return c.relative_speed is None  # pitch_speed and bat_angular_speed of explicit set-ups
 
 
 def _conditions(case: Case, field: str) -> list[ConditionSpec]:
-    used = [c for c in case.protocol.conditions if _uses(c, field)]
+    """The conditions a speed parameter sets: those whose body moves; when none does (a
+    stationary-bat test swept in swing speed), every condition with explicit speeds."""
+    used = [c for c in case.protocol.conditions if _uses(c, field)] or \
+        [c for c in case.protocol.conditions if _settable(c, field)]
     if not used:
         why = {"relative_speed": "sets explicit speeds, not a matched relative speed",
                "bat_angular_speed": "matches a relative speed (vary relative_speed)",
-               "pitch_speed": "sets no pitch speed (its balls are stationary or matched)"}
+               "pitch_speed": "matches a relative speed with a stationary ball or bat (vary "
+                              "relative_speed)"}
         raise ParameterError(f"protocol {case.protocol.id!r} {why[field]}: {field} does not "
                              "apply to it")
     return used
@@ -244,10 +259,13 @@ PARAMETERS: dict[str, Parameter] = {p.name: p for p in (
            "frequency of a hollow bat; the barrel is calibrated to it.", _hoop[0], _hoop[1],
            (100.0, 20000.0), 0.5),
     _param("pitch_speed", "speed", "protocol", "Ball speed toward the bat, in every condition "
-           "that gives one.", _speed_nominal("pitch_speed"), _speed_apply("pitch_speed"),
+           "that pitches the ball (stationary-ball set-ups stay stationary unless no "
+           "condition pitches).", _speed_nominal("pitch_speed"), _speed_apply("pitch_speed"),
            (0.0, 300.0), 0.01),
     _param("bat_angular_speed", "angular_speed", "protocol", "Bat angular speed about the "
-           "pivot, in every condition with explicit speeds (replaces a linear bat speed).",
+           "pivot, in every condition that swings the bat at explicit speeds (replaces a "
+           "linear bat speed; stationary-bat set-ups stay stationary unless no condition "
+           "swings).",
            _speed_nominal("bat_angular_speed"), _speed_apply("bat_angular_speed"),
            (0.0, 2000.0), 0.01),
     _param("relative_speed", "speed", "protocol", "Matched relative normal speed, in every "
@@ -264,7 +282,7 @@ class Axis:
 
     parameter: Parameter
     values: tuple[float, ...]  # [SI]
-    nominal: float  # [SI]
+    nominal: float | None  # [SI], None when the bat file does not give it
     percent: bool  # the values were given as percent of nominal
 
     @property
@@ -306,9 +324,10 @@ def read_value(text: str, parameter: Parameter, nominal: float | None) -> tuple[
         except ValueError:
             raise ParameterError(f"{parameter.name}: {text!r} is not a percentage") from None
         if nominal is None or nominal == 0:
-            raise ParameterError(f"{parameter.name}: the nominal value is zero, so a percentage "
+            what = "is zero" if nominal == 0 else "is not given by the bat file"
+            raise ParameterError(f"{parameter.name}: the nominal value {what}, so a percentage "
                                  "of it means nothing; give absolute values with units")
-        return nominal * pct / 100.0, True
+        return nominal * (pct / 100.0), True
     if parameter.dimension is None:
         try:
             return float(t), False
@@ -320,7 +339,7 @@ def read_value(text: str, parameter: Parameter, nominal: float | None) -> tuple[
         raise ParameterError(f"{parameter.name}: {exc}") from None
 
 
-def read_range(name: str, spec: str, nominal: float, points: int | None = None
+def read_range(name: str, spec: str, nominal: float | None, points: int | None = None
                ) -> Axis:
     """``START:STOP:N`` (N evenly spaced values, both ends included), ``START:STOP`` (with
     ``points``) or one value; each end ``NN%`` or a quantity."""
@@ -330,8 +349,11 @@ def read_range(name: str, spec: str, nominal: float, points: int | None = None
         v, pct = read_value(spec, parameter, nominal)
         values: tuple[float, ...] = (v,)
     else:
-        start, pct = read_value(m.group(1), parameter, nominal)
-        stop, pct2 = read_value(m.group(2), parameter, nominal)
+        first, last = m.group(1), m.group(2)
+        if _plain(first) and not _plain(last) and not last.endswith("%"):
+            first += " " + _NUMBER.sub("", last, count=1).strip()  # 50:70m/s reads as 50m/s:70m/s
+        start, pct = read_value(first, parameter, nominal)
+        stop, pct2 = read_value(last, parameter, nominal)
         n = int(m.group(3)) if m.group(3) else (points or 0)
         if pct != pct2:
             raise ParameterError(f"{name}: give both ends as percentages or both as quantities")
@@ -349,3 +371,12 @@ def read_range(name: str, spec: str, nominal: float, points: int | None = None
                  if parameter.dimension else f" ({lo:g} to {hi:g})")
         raise ParameterError(f"{name}: {bad[0]:.6g} (SI) is outside the accepted range{where}")
     return Axis(parameter, values, nominal, pct)
+
+
+_NUMBER = re.compile(r"^\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def _plain(text: str) -> bool:
+    """A bare number, without a unit or a percent sign."""
+    m = _NUMBER.match(text)
+    return m is not None and not text[m.end():].strip()

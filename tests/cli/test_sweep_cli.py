@@ -1,0 +1,224 @@
+"""`batcert sweep` and `batcert design`: exit codes, clean --json, the written report set and
+figures, resuming from the journal.
+
+All runs use the rigid engine on the solid ash bat (closed forms, a few milliseconds a
+variant); tests/sweeps/ checks the numbers.
+"""
+
+from __future__ import annotations
+
+import json
+import shlex
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from batcert.commands.sweep import journal_path, plan_sweep, run_sweep
+from batcert.sweeps import execute as execute_module
+from batcert.sweeps.sweep import evaluate_chunk
+
+REPO = Path(__file__).resolve().parents[2]
+SWEEP = ("sweep", "ash-34", "-p", "ncaa-bbcor", "--vary", "pitch_speed=40m/s:60m/s:6",
+         "--engine", "rigid")
+STEM = "sweep--ncaa-bbcor-pitch-speed--ash-34"
+BBCOR_052 = """\
+    id: bbcor-052
+    title: NCAA BBCOR test with a 0.52 limit
+    reference: test (ncaa-bbcor with another limit)
+    version: "1"
+    pivot: 6 in
+    ball: collegiate-baseball
+    conditions:
+      - name: stationary-bat
+        pitch_speed: 136 mph
+        bat_angular_speed: 0 rad/s
+    impact_location:
+      rule: max-metric
+      window: [2 in, 12 in]
+    metric: bbcor
+    aggregate: mean
+    limit:
+      max: 0.52
+      source: test
+"""
+
+
+@pytest.fixture
+def bbcor_052(tmp_path) -> Path:
+    """ncaa-bbcor with a 0.52 limit: the rigid ash bat meets it at about 58.7 m/s
+    (tests/sweeps/test_design.py derives it)."""
+    path = tmp_path / "bbcor-052.yaml"
+    path.write_text(textwrap.dedent(BBCOR_052), encoding="utf-8")
+    return path
+
+
+def check_sweep_json(data: dict, n: int) -> None:
+    """The JSON leads with parameter, values and metrics, every metric an array of ``n``."""
+    assert list(data)[:3] == ["parameter", "values", "metrics"]
+    assert len(data["values"]) == n
+    assert data["metrics"] and all(len(v) == n for v in data["metrics"].values())
+
+
+@pytest.mark.parametrize("command, needles", [
+    ("sweep", ("0 every variant was evaluated", "2 usage error", "3 invalid input",
+               "4 the reports cannot be written")),
+    ("design", ("0 the limit is met somewhere in the range",
+                "1 no value in the range meets the limit", "2 usage error", "3 invalid input")),
+])
+def test_help_lists_exit_codes(batcert_cli, command, needles):
+    result = batcert_cli(command, "--help")
+    assert result.exit_code == 0
+    text = " ".join(result.stdout.split())
+    for needle in needles:
+        assert needle in text
+
+
+def test_sweep_writes_the_report_set(batcert_cli, tmp_path):
+    out = tmp_path / "r"
+    result = batcert_cli(*SWEEP, "--out", out)
+    assert result.exit_code == 0, result.stderr
+    assert "Sweep: Ash 34 in (Smith 2001), ncaa-bbcor, pitch_speed" in result.stdout
+    # the set, and no journal left once the reports are written
+    assert sorted(p.name for p in out.iterdir()) == [f"{STEM}.html", f"{STEM}.json",
+                                                     f"{STEM}.md"]
+    data = json.loads((out / f"{STEM}.json").read_text())
+    check_sweep_json(data, 6)
+    assert data["parameter"] == "pitch_speed"
+    assert data["values"] == [40.0, 44.0, 48.0, 52.0, 56.0, 60.0]
+    assert data["metrics"]["verdict"] == ["fail"] * 6  # a rigid ash bat's BBCOR is above 0.5
+    assert "pitch_speed" in (out / f"{STEM}.md").read_text()
+
+
+def test_json_only_on_stdout(batcert_cli, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    result = batcert_cli(*SWEEP, "--json")
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)  # nothing but the JSON
+    check_sweep_json(data, 6)
+    assert list(tmp_path.iterdir()) == []  # --json writes no reports without --out
+
+
+def test_grid_json(batcert_cli):
+    result = batcert_cli("sweep", "ash-34", "-p", "ncaa-bbcor", "--vary",
+                         "pitch_speed=50m/s:60m/s:3", "--vary", "bat_angular_speed=0rad/s:20rad/s:2",
+                         "--engine", "rigid", "--json")
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)
+    check_sweep_json(data, 6)
+    assert data["parameter"] == ["pitch_speed", "bat_angular_speed"]
+    assert data["values"] == [[p, w] for p in (50.0, 55.0, 60.0) for w in (0.0, 20.0)]
+
+
+@pytest.mark.parametrize("vary, message", [
+    ("wal=60%:140%:5", "did you mean 'wall'?"),
+    ("wall=2mm:3mm:3", "wall needs a hollow bat"),  # ash-34 is solid
+    ("pitch_speed=40m/s:60:3", "a unit is required"),  # the stop lacks the unit
+    ("pitch_speed=40m/s:60m/s:1", "N >= 2"),
+])
+def test_usage_errors_exit_2(batcert_cli, tmp_path, vary, message):
+    result = batcert_cli("sweep", "ash-34", "-p", "ncaa-bbcor", "--vary", vary, "--engine",
+                         "rigid", "--out", tmp_path / "r")
+    assert result.exit_code == 2
+    assert message in " ".join(result.stderr.split())
+    assert not (tmp_path / "r").exists()  # nothing written before the work
+
+
+def test_resume_needs_the_report_directory(batcert_cli):
+    for extra in (("--no-reports",), ("--json",)):
+        result = batcert_cli(*SWEEP, "--resume", *extra)
+        assert result.exit_code == 2
+        assert "--resume needs the report directory" in " ".join(result.stderr.split())
+
+
+def test_resume_continues_an_interrupted_sweep(batcert_cli, tmp_path, monkeypatch):
+    out = tmp_path / "r"
+    assert batcert_cli(*SWEEP, "--out", out, "--format", "json").exit_code == 0
+    whole = json.loads((out / f"{STEM}.json").read_text())
+    # the journal an interrupted `batcert sweep` leaves: header, first chunk, half a line
+    journal = journal_path(out, STEM)
+    run_sweep(plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:60m/s:6"], "rigid"),
+              journal_at=journal)
+    lines = journal.read_text().splitlines()
+    assert len(lines) == 3  # header and two chunks (4 + 2 variants)
+    journal.write_text(lines[0] + "\n" + lines[1] + "\n" + lines[2][:40])
+    calls: list[int] = []
+
+    def counting(chunk):
+        calls.append(chunk.index)
+        return evaluate_chunk(chunk)
+
+    monkeypatch.setattr(execute_module, "evaluate_chunk", counting)
+    result = batcert_cli(*SWEEP, "--out", out, "--format", "json", "--resume")
+    assert result.exit_code == 0, result.stderr
+    assert calls == [1]  # only the chunk the journal lacked
+    assert not journal.exists()
+    resumed = json.loads((out / f"{STEM}.json").read_text())
+    assert resumed["metrics"] == whole["metrics"]
+
+
+def test_design_exit_0_when_the_limit_is_met(batcert_cli, bbcor_052):
+    result = batcert_cli("design", "ash-34", "-p", bbcor_052, "--solve", "pitch_speed",
+                         "--range", "40m/s:75m/s", "--engine", "rigid", "--json")
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)
+    check_sweep_json(data, 9)  # the margin curve, --points 9
+    (root,) = data["design"]["roots"]
+    assert root["value"] == pytest.approx(58.657, abs=0.01)  # the default tolerance, 0.01 m/s
+    assert root["passes_above"] is True
+
+
+def test_design_exit_1_without_a_root(batcert_cli, bbcor_052):
+    result = batcert_cli("design", "ash-34", "-p", bbcor_052, "--solve", "pitch_speed",
+                         "--range", "40m/s:45m/s", "--points", "3", "--engine", "rigid",
+                         "--no-reports")
+    assert result.exit_code == 1, result.stderr
+    text = " ".join(result.stdout.split())
+    assert "No pitch_speed from 40 m/s" in text and "fails over the whole range" in text
+
+
+@pytest.mark.parametrize("args, message", [
+    (("-p", "proposed", "--solve", "relative_speed", "--range", "50m/s:70m/s"), "sets no limit"),
+    pytest.param(("-p", "proposed", "--solve", "relative_speed"), "sets no limit",
+                 id="proposed-default-range"),
+    (("-p", "ncaa-bbcor", "--solve", "pich_speed"), "did you mean 'pitch_speed'?"),
+    (("-p", "ncaa-bbcor", "--solve", "pitch_speed", "--tolerance", "0 m/s"), "above zero"),
+])
+def test_design_usage_errors_exit_2(batcert_cli, args, message):
+    result = batcert_cli("design", "ash-34", *args, "--engine", "rigid", "--no-reports")
+    assert result.exit_code == 2
+    assert message in " ".join(result.stderr.split())
+
+
+def test_figures(batcert_cli, tmp_path):
+    pytest.importorskip("matplotlib")
+    figures = tmp_path / "f"
+    result = batcert_cli("sweep", "ash-34", "-p", "ncaa-bbcor", "--vary",
+                         "pitch_speed=50m/s:60m/s:2", "--engine", "rigid", "--no-reports",
+                         "--figures", figures)
+    assert result.exit_code == 0, result.stderr
+    files = sorted(figures.iterdir())
+    stems = {p.stem for p in files}
+    assert stems and all(s.startswith(STEM + "--") for s in stems)
+    assert sorted(p.name for p in files) == sorted(f"{s}.{x}" for s in stems
+                                                   for x in ("pdf", "png", "svg"))
+    magic = {".pdf": b"%PDF", ".png": b"\x89PNG"}
+    for p in files:
+        head = p.read_bytes()[:512]
+        assert head.startswith(magic[p.suffix]) if p.suffix in magic else b"<svg" in head, p
+    assert f"{STEM}--metric" in stems  # the protocol's metric against the parameter
+
+
+@pytest.mark.parametrize("example", [
+    "ash-34 -p protocols/studies/smith2001-bpf-sweet-spot.yaml "
+    "--vary bat_angular_speed=5rad/s:60rad/s:12",
+    "aluminium-34 -p proposed --vary wall=80%:120%:5 --vary relative_speed=50:70m/s:3",
+])
+def test_help_examples_run(batcert_cli, monkeypatch, example):
+    """The examples `batcert sweep --help` shows run as written (on the rigid engine, no
+    reports)."""
+    shown = " ".join(batcert_cli("sweep", "--help").stdout.replace("\\\n", " ").split())
+    assert f"batcert sweep {example}" in shown
+    monkeypatch.chdir(REPO)
+    result = batcert_cli("sweep", *shlex.split(example), "--engine", "rigid", "--no-reports")
+    assert result.exit_code == 0, result.stderr

@@ -1,0 +1,274 @@
+"""batcert.sweeps.sweep and batcert.sweeps.execute: a sweep's variants against `batcert run`,
+the grid's order, failed variants, worker processes and resuming from the journal.
+
+Comparisons are exact (``==``) wherever the same code runs on the same floats: the rigid
+engine's closed forms, a sweep against itself run elsewhere (chunks are fixed, so worker
+processes see the same engine batches) and a journal (JSON round-trips every double). The one
+exception is a flexible-engine variant against `batcert run` of that variant alone: the engine
+stacks a chunk's variants into one integration, and the stacked arithmetic differs from a solo
+run's in the last bits (measured: 1.7e-15 relative), so that comparison allows 1e-13.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from batcert.commands.sweep import plan_sweep, run_sweep
+from batcert.engines import get_engine
+from batcert.errors import UsageProblem
+from batcert.model.build import build_bat
+from batcert.model.mass import mass_properties
+from batcert.physics.rigid import rigid_sweet_spot
+from batcert.results.sweep import CONDITION_FIELDS
+from batcert.runner.runner import run_protocol
+from batcert.sweeps import execute as execute_module
+from batcert.sweeps.sweep import CHUNK_SIZE, collect, evaluate_chunk
+from batcert.sweeps.variants import geometry_only
+
+REPO = Path(__file__).resolve().parents[2]
+SMITH = str(REPO / "protocols" / "studies" / "smith2001-bpf-sweet-spot.yaml")
+
+
+def run_of(plan, built=None):
+    """`batcert run` (run_protocol) of the plan's nominal bat, or of ``built``, under its
+    protocol."""
+    return run_protocol(built or plan.built, plan.base.protocol, plan.ball,
+                        get_engine(plan.engine), plan.created)
+
+
+def assert_point_is_run(result, k: int, run, rel: float = 0.0) -> None:
+    """Variant ``k`` of a sweep has every number of ``run``: exactly, or to ``rel``."""
+    def same(a, b) -> bool:
+        return a == b if rel == 0 or a is None or b is None else a == pytest.approx(b, rel=rel)
+
+    assert result.errors[k] is None and result.verdicts[k] == run.verdict
+    mp, barrel = run.mass_properties, run.barrel
+    expected = {"value": run.value, "margin": run.margin, "mass": mp.mass, "cg": mp.cg,
+                "moi_pivot": mp.moi_pivot, "cop": mp.cop,
+                "value_low": barrel.value_low if barrel else None,
+                "value_high": barrel.value_high if barrel else None}
+    for f, v in expected.items():
+        assert same(result.series[f][k], v), f
+    assert [c.name for c in result.conditions] == [c.name for c in run.conditions]
+    for c, rc in zip(result.conditions, run.conditions, strict=True):
+        for f in CONDITION_FIELDS:
+            assert same(c.series[f][k], getattr(rc, f)), f"{c.name}.{f}"
+
+
+# ---- against `batcert run` ------------------------------------------------------------------
+
+@pytest.mark.parametrize("bat, protocol, vary", [
+    ("ash-34", "ncaa-bbcor", "pitch_speed=100mph:136mph:2"),  # nominal 136 mph, the last point
+    ("aluminium-34", "ncaa-bbcor", "pitch_speed=136mph:150mph:2"),  # nominal the first point
+    ("ash-34", "ncaa-besr", "pitch_speed=60mph:70mph:2"),  # a linear bat speed stays
+    ("ash-34", "stationary-ball", "bat_angular_speed=40rad/s:53rad/s:2"),
+    ("ash-34", "proposed", "relative_speed=60m/s:70m/s:2"),  # matched conditions
+    ("ash-34", "proposed", "pitch_speed=20m/s:31m/s:2"),
+])
+def test_rigid_point_at_the_nominal_value_is_batcert_run(bat, protocol, vary):
+    plan = plan_sweep(bat, protocol, [vary], engine="rigid")
+    axis = plan.axes[0]
+    k = axis.values.index(axis.nominal)  # the quantities give the nominal exactly
+    result = run_sweep(plan)
+    assert_point_is_run(result, k, run_of(plan))
+    assert result.nominal is None  # a protocol parameter keeps the bat as measured
+
+
+def test_rigid_point_at_the_nominal_value_of_a_study_protocol():
+    plan = plan_sweep("ash-34", SMITH, ["pitch_speed=31m/s:40m/s:2"], engine="rigid")
+    assert plan.axes[0].nominal == plan.axes[0].values[0] == 31.0
+    result = run_sweep(plan)
+    stationary_ball = next(c for c in result.conditions if c.name == "stationary-ball")
+    assert stationary_ball.series["pitch_speed"][0] == 0.0  # the ball stays at rest
+    assert_point_is_run(result, 0, run_of(plan))
+
+
+def test_a_swing_sweep_keeps_the_stationary_bat_at_rest():
+    plan = plan_sweep("ash-34", SMITH, ["bat_angular_speed=40rad/s:53rad/s:2"], engine="rigid")
+    result = run_sweep(plan)
+    stationary_bat = next(c for c in result.conditions if c.name == "stationary-bat")
+    assert stationary_bat.series["bat_angular_speed"] == [0.0, 0.0]
+    assert_point_is_run(result, 1, run_of(plan))  # 53 rad/s, the study's swing
+
+
+def test_flexible_point_at_the_nominal_wall_is_batcert_run(flexible_wall_sweep):
+    """The nominal wall variant (run in one engine batch with three other variants) equals
+    `batcert run` of the same geometry alone; the nominal bat as measured is reported apart."""
+    plan, result = flexible_wall_sweep
+    axis = plan.axes[0]
+    assert axis.values[2] == axis.nominal == 2.7e-3  # 90 %..110 % in 5 steps: the middle
+    geometric = build_bat(geometry_only(plan.base.bat))
+    # stacked with three other variants in one integration: the last bits differ (docstring)
+    assert_point_is_run(result, 2, run_of(plan, built=geometric), rel=1e-13)
+    measured = run_of(plan)
+    assert (result.nominal.value, result.nominal.margin, result.nominal.verdict) == (
+        measured.value, measured.margin, measured.verdict)
+    assert result.nominal.measured_mass == 0.863  # aluminium-34's measured 863 g
+    assert result.nominal.error is None
+
+
+def test_rigid_sweet_spot_is_eq7():
+    """Smith 2001 Eq. 7 (batcert.physics.rigid.rigid_sweet_spot) of each variant's MOI and
+    speeds. Exact: the same closed form of the same floats."""
+    plan = plan_sweep("ash-34", SMITH, ["bat_angular_speed=10rad/s:60rad/s:6"], engine="rigid")
+    result = run_sweep(plan)
+    moi = mass_properties(plan.built, plan.base.protocol.pivot).moi_pivot
+    # the measured MOI about the study's pivot, as reconciled (a density fit: 1e-12)
+    assert moi == pytest.approx(0.209, rel=1e-12)
+    assert result.series["moi_pivot"] == [moi] * 6
+    ball_mass = plan.ball.model.mass
+    swung = next(c for c in result.conditions if c.name == "pitched-and-swung")
+    assert swung.series["bat_angular_speed"] == list(plan.axes[0].values)
+    assert swung.series["pitch_speed"] == [-31.0] * 6
+    for c in result.conditions:
+        expected = [float(rigid_sweet_spot(i, ball_mass, vp, w)) if w else None for i, vp, w in
+                    zip(result.series["moi_pivot"], c.series["pitch_speed"],
+                        c.series["bat_angular_speed"], strict=True)]
+        assert c.series["rigid_sweet_spot"] == expected, c.name
+
+
+def test_rigid_sweet_spot_needs_a_swing():
+    plan = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=50m/s:60m/s:2"], engine="rigid")
+    (c,) = run_sweep(plan).conditions
+    assert not c.rigid_applies and c.series["rigid_sweet_spot"] == [None, None]
+
+
+# ---- the grid, its arrays and failed variants --------------------------------------------
+def test_arrays_align_with_values():
+    plan = plan_sweep("ash-34", SMITH, ["bat_angular_speed=10rad/s:60rad/s:6"], engine="rigid")
+    data = run_sweep(plan).to_dict()
+    assert list(data)[:3] == ["parameter", "values", "metrics"]
+    assert data["parameter"] == "bat_angular_speed"
+    assert data["values"] == [10.0, 20.0, 30.0, 40.0, 50.0, 60.0]
+    assert all(len(v) == 6 for v in data["metrics"].values())
+    assert {"value", "margin", "verdict", "mass", "moi_pivot", "cop",
+            "pitched-and-swung.sweet_spot", "stationary-bat.rigid_sweet_spot"} <= set(
+        data["metrics"])
+    assert json.loads(json.dumps(data, allow_nan=False)) == data  # plain JSON
+
+
+def test_grid_first_axis_outermost():
+    plan = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=50m/s:60m/s:3",
+                                                "bat_angular_speed=0rad/s:20rad/s:2"],
+                      engine="rigid")
+    result = run_sweep(plan)
+    pitch, swing = [50.0, 55.0, 60.0], [0.0, 20.0]
+    assert result.points == [[p, w] for p in pitch for w in swing]
+    (c,) = result.conditions
+    # each row is the variant of its point, not only listed in its place
+    assert c.series["pitch_speed"] == [-p for p in pitch for _ in swing]
+    assert c.series["bat_angular_speed"] == [w for _ in pitch for w in swing]
+    data = result.to_dict()
+    assert data["parameter"] == ["pitch_speed", "bat_angular_speed"]
+    assert data["values"] == result.points
+    assert all(len(v) == 6 for v in data["metrics"].values())
+    chunks = plan.chunks()
+    assert [p for ch in chunks for p in ch.points] == list(enumerate(map(tuple, result.points)))
+    assert all(len(ch.points) <= CHUNK_SIZE for ch in chunks)
+
+
+def test_collect_does_not_depend_on_row_order():
+    plan = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:60m/s:6"], engine="rigid")
+    rows = [r for ch in plan.chunks() for r in evaluate_chunk(ch)]
+    assert collect(plan, rows, None).to_dict() == collect(plan, rows[::-1], None).to_dict()
+
+
+def test_a_variant_that_cannot_be_built_gets_an_error_row():
+    # ash-34 with its measured CG and MOI kept: 90 % of its mass gives a radius of gyration
+    # longer than a uniform rod's, and 110 % needs a negative density near the knob
+    plan = plan_sweep("ash-34", "ncaa-bbcor", ["mass=90%:110%:3"], engine="rigid")
+    assert len(plan.chunks()) == 1  # the failed and the good variants share one batch
+    result = run_sweep(plan)
+    assert result.errors[1] is None and result.verdicts[1] in ("pass", "fail")
+    assert "radius of gyration" in result.errors[0]
+    assert "cannot reconcile" in result.errors[2]
+    for k in (0, 2):
+        assert result.verdicts[k] is None
+        assert all(v[k] is None for v in result.series.values())
+        assert all(v[k] is None for c in result.conditions for v in c.series.values())
+    assert result.warnings[0] == "2 of 3 variants have no result (see errors)"
+    # the good variant is what it would be alone
+    alone = plan_sweep("ash-34", "ncaa-bbcor", [f"mass={plan.axes[0].values[1]}kg"],
+                       engine="rigid")
+    assert run_sweep(alone).series == {k: [v[1]] for k, v in result.series.items()}
+
+
+# ---- where it runs ------------------------------------------------------------------------
+def test_two_worker_processes_give_the_serial_numbers(flexible_wall_sweep):
+    plan, serial = flexible_wall_sweep
+    assert len(plan.chunks()) == 2  # so that both workers have one
+    parallel = run_sweep(plan, workers=2)
+    assert parallel.to_dict()["metrics"] == serial.to_dict()["metrics"]
+    assert parallel.to_dict() == serial.to_dict()
+
+
+# ---- the journal ----------------------------------------------------------------------------
+
+@pytest.fixture
+def counted(monkeypatch):
+    """The indices of the chunks evaluate_chunk is called on (in this process: serial runs)."""
+    calls: list[int] = []
+
+    def counting(chunk):
+        calls.append(chunk.index)
+        return evaluate_chunk(chunk)
+
+    monkeypatch.setattr(execute_module, "evaluate_chunk", counting)
+    return calls
+
+
+def test_resume_evaluates_only_the_missing_chunks(tmp_path, counted):
+    n = 2 * CHUNK_SIZE + 2  # three chunks, the last one short
+    plan = plan_sweep("ash-34", "ncaa-bbcor", [f"pitch_speed=40m/s:60m/s:{n}"], engine="rigid")
+    assert [len(c.points) for c in plan.chunks()] == [CHUNK_SIZE, CHUNK_SIZE, 2]
+    journal = tmp_path / "sweep.partial.jsonl"
+    whole = run_sweep(plan, journal_at=journal)
+    assert counted == [0, 1, 2]
+    lines = journal.read_text().splitlines()
+    assert len(lines) == 4 and json.loads(lines[0])["created"] == plan.created
+
+    # interrupted while writing the second chunk: header, first chunk, half a line
+    journal.write_text("\n".join(lines[:2]) + "\n" + lines[2][: len(lines[2]) // 2])
+    counted.clear()
+    later = replace(plan, created="2099-01-01T00:00:00+00:00")  # a new invocation
+    resumed = run_sweep(later, journal_at=journal, resume=True)
+    assert counted == [1, 2]
+    assert resumed.to_dict() == whole.to_dict()  # numbers and the first run's timestamp
+    assert journal.read_text().splitlines()[:2] == lines[:2]  # the half line is gone
+    assert len(journal.read_text().splitlines()) == 4
+
+    # a complete journal: nothing left to evaluate
+    counted.clear()
+    assert run_sweep(later, journal_at=journal, resume=True).to_dict() == whole.to_dict()
+    assert counted == []
+
+
+def test_without_resume_the_journal_starts_afresh(tmp_path, counted):
+    plan = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:60m/s:5"], engine="rigid")
+    journal = tmp_path / "sweep.partial.jsonl"
+    run_sweep(plan, journal_at=journal)
+    counted.clear()
+    run_sweep(plan, journal_at=journal)
+    assert counted == [0, 1]
+
+
+@pytest.mark.parametrize("other", [
+    ("ash-34", "ncaa-bbcor", "pitch_speed=40m/s:60m/s:6", "flexible"),  # another engine
+    ("ash-34", "ncaa-bbcor", "pitch_speed=40m/s:61m/s:5", "rigid"),  # other values
+    ("aluminium-34", "ncaa-bbcor", "pitch_speed=40m/s:60m/s:5", "rigid"),  # another bat
+])
+def test_a_journal_of_another_sweep_is_refused(tmp_path, counted, other):
+    journal = tmp_path / "sweep.partial.jsonl"
+    run_sweep(plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:60m/s:5"], engine="rigid"),
+              journal_at=journal)
+    before = journal.read_text()
+    counted.clear()
+    bat, protocol, vary, engine = other
+    with pytest.raises(UsageProblem, match="holds a sweep with other inputs"):
+        run_sweep(plan_sweep(bat, protocol, [vary], engine=engine), journal_at=journal,
+                  resume=True)
+    assert counted == [] and journal.read_text() == before

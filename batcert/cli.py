@@ -491,7 +491,9 @@ Exit codes:
   2  usage error (unknown parameter or option, a value the parameter cannot take, a
      scheduler that cannot be reached)
   3  invalid input (a spec file has errors; nothing is written)
-""" + ENVIRONMENT_EXIT_CODES
+  4  the reports (or the sweep's journal) cannot be written
+  130  interrupted (Ctrl-C); no report is half-written, and the journal beside the
+     reports keeps the finished variants for --resume"""
 
 DESIGN_EXIT_CODES = """\b
 Exit codes:

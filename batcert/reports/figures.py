@@ -1,7 +1,7 @@
 """``--figures DIR``: every figure of a report as SVG, PDF and PNG files, drawn with matplotlib.
 
 matplotlib is imported here only, when figures are asked for, so that no command pays its
-start-up time otherwise (about 0.3 s). The figures use the report charts' colour-blind-safe
+start-up time otherwise (0.3-0.6 s here). The figures use the report charts' colour-blind-safe
 palette and dash patterns, print-legible type (9 pt at 16 cm wide), and are written as one set
 like the reports (:func:`batcert.reports.write.write_texts`). The files are reproducible: the
 SVG and PDF carry no date and the SVG fixes matplotlib's random ids.

@@ -198,6 +198,13 @@ def _check_offset_differs(result: ComparisonResult, claim: ClaimSpec) -> tuple[s
     return ("supported" if ok else "not-supported"), text + note
 
 
+def _movements(pts: Sequence[tuple[float, float]]) -> tuple[float, float]:
+    """How far the sweet spot and Eq. 7's rigid sweet spot move over (model, rigid) pairs."""
+    model = max(s for s, _ in pts) - min(s for s, _ in pts)
+    rigid = max(r for _, r in pts) - min(r for _, r in pts)
+    return model, rigid
+
+
 def _check_sweet_spot_moves(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, str]:
     parts, ok, tested = [], True, 0
     for pid in claim.protocols:
@@ -211,8 +218,7 @@ def _check_sweet_spot_moves(result: ComparisonResult, claim: ClaimSpec) -> tuple
             if len(pts) < 2:
                 continue
             tested += 1
-            model = max(s for s, _ in pts) - min(s for s, _ in pts)
-            rigid = max(r for _, r in pts) - min(r for _, r in pts)
+            model, rigid = _movements(pts)
             ok &= model <= claim.factor * rigid
             parts.append(f"{pid}, {b.label}: sweet spot moves {model * 100:.1f} cm, Eq. 7 "
                          f"{rigid * 100:.1f} cm")
@@ -270,8 +276,7 @@ def _check_figure_sweet_spot(result: ComparisonResult, claim: ClaimSpec) -> tupl
         if len(pts) < 2:
             continue
         tested += 1
-        model = max(s for s, _ in pts) - min(s for s, _ in pts)
-        rigid = max(r for _, r in pts) - min(r for _, r in pts)
+        model, rigid = _movements(pts)
         ok &= model <= claim.factor * rigid
         parts.append(f"{bat.label}: over {len(pts)} speeds where Eq. 7 is defined the sweet "
                      f"spot moves {model * 100:.1f} cm, Eq. 7 {rigid * 100:.1f} cm")

@@ -62,7 +62,8 @@ def check_sweep_json(data: dict, n: int) -> None:
 
 @pytest.mark.parametrize("command, needles", [
     ("sweep", ("0 every variant was evaluated", "2 usage error", "3 invalid input",
-               "4 the reports cannot be written")),
+               "4 the reports (or the sweep's journal) cannot be written",
+               "130 interrupted (Ctrl-C)", "keeps the finished variants for --resume")),
     ("design", ("0 the limit is met somewhere in the range",
                 "1 no value in the range meets the limit", "2 usage error", "3 invalid input")),
 ])

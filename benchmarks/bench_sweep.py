@@ -22,9 +22,9 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 def _count_impacts(plan) -> tuple[int, float]:
     """Run the plan serially, counting the impacts the engine solves; (impacts, seconds)."""
-    from batcert.sweeps.execute import execute
     from batcert.engines.flexible import FlexibleEngine
     from batcert.engines.rigid import RigidEngine
+    from batcert.sweeps.execute import execute
     counted = [0]
     originals = {}
     for cls in (FlexibleEngine, RigidEngine):
@@ -52,8 +52,8 @@ def main() -> None:
     ap.add_argument("--vary", default="relative_speed=50m/s:70m/s")
     ap.add_argument("--engine", default="flexible")
     args = ap.parse_args()
-    from batcert.sweeps.execute import execute
     from batcert.commands.sweep import plan_sweep
+    from batcert.sweeps.execute import execute
     plan = plan_sweep(args.bat, args.protocol, [f"{args.vary}:{args.variants}"], args.engine)
     print(f"sweep: {args.bat} under {args.protocol}, {args.vary}:{args.variants}, engine "
           f"{args.engine}, {os.cpu_count()} CPUs")

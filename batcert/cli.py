@@ -179,6 +179,13 @@ FIGURES_OPTION = click.option(
          "(drawn with matplotlib).")
 
 
+def _check_figures_dir(figures_dir: Path | None) -> None:
+    """A figures directory that cannot hold the files is refused before any work (exit 4)."""
+    if figures_dir is not None:
+        from batcert.reports.write import check_output_dir
+        check_output_dir(figures_dir)
+
+
 def _figures(result, figures_dir: Path | None) -> None:
     if figures_dir is None:
         return
@@ -236,6 +243,7 @@ def run(bat, protocols, engine, out_dir, formats, no_reports, as_json, figures_d
     console.log(f"bat {loaded.path}; protocols " + ", ".join(str(p.protocol.path) for p in inputs))
     clock.lap("inputs")
     target = _report_dir(out_dir, no_reports, as_json)
+    _check_figures_dir(figures_dir)
     with console.progress("running") as bar:
         results = run_bat(loaded, inputs, engine, on_step=_stepper(bar))
     console.log(f"engine {engine}: " + "; ".join(f"{k} {v}" for k, v in
@@ -443,6 +451,7 @@ def compare(bats, protocols, study, reference, engine, out_dir, formats, no_repo
     from batcert.commands.compare import run_comparison
     fmts = _formats(formats)
     target = _report_dir(out_dir, no_reports, as_json)
+    _check_figures_dir(figures_dir)
     clock = _Clock()
     with console.progress("comparing") as bar:
         result = run_comparison(list(bats), list(protocols), study, reference, engine,
@@ -563,9 +572,7 @@ def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine
     if resume and target is None:
         raise click.UsageError("--resume needs the report directory that holds the journal "
                                "(drop --no-reports, or give --out with --json)")
-    if figures_dir is not None:
-        from batcert.reports.write import check_output_dir
-        check_output_dir(figures_dir)
+    _check_figures_dir(figures_dir)
     clock.lap("inputs")
     journal = None
     if target is not None:
@@ -616,6 +623,7 @@ def design(bat, protocol, parameter, range_text, points, tolerance, workers, sch
     from batcert.commands.sweep import run_design
     fmts = _formats(formats)
     target = _report_dir(out_dir, no_reports, as_json)
+    _check_figures_dir(figures_dir)
     clock = _Clock()
     with console.progress("designing") as bar:
         result = run_design(bat, protocol, parameter, range_text, engine, points, tolerance,

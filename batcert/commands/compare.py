@@ -3,6 +3,8 @@ side. Every input is loaded before anything runs."""
 
 from __future__ import annotations
 
+import datetime as _dt
+
 from batcert.analysis.compare import bat_labels, compare
 from batcert.commands.inputs import (
     LoadedBat,
@@ -19,6 +21,7 @@ from batcert.results.compare import BatEntry, ComparisonResult
 from batcert.runner.runner import run_protocols
 from batcert.specs.resolve import display_path, resolve
 from batcert.specs.study import StudySpec
+from batcert.sweeps.study_figures import figure_plans, study_figure
 
 
 def _protocols(spec: StudySpec | None, extra: list[str]) -> list[ProtocolInputs]:
@@ -62,31 +65,33 @@ def run_comparison(bats: list[str], protocols: list[str], study: str | None = No
     proto_inputs = _protocols(spec, protocols)
     loaded, ref = _bats(bats, spec, reference)
     eng = get_engine(engine)
-    flat = run_protocols([(b.built, p.protocol, p.ball) for b in loaded for p in proto_inputs],
-                         eng, on_step=on_step)  # every bat and protocol solved together
-    runs = [flat[i * len(proto_inputs):(i + 1) * len(proto_inputs)] for i in range(len(loaded))]
+    created = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
     labels = bat_labels([b.built.spec.name for b in loaded], [str(b.path) for b in loaded])
+    planned = _figure_plans(spec, loaded, labels, ref, proto_inputs, engine, created) \
+        if spec else []  # checked before anything runs
+    flat = run_protocols([(b.built, p.protocol, p.ball) for b in loaded for p in proto_inputs],
+                         eng, created, on_step)  # every bat and protocol solved together
+    runs = [flat[i * len(proto_inputs):(i + 1) * len(proto_inputs)] for i in range(len(loaded))]
     entries = [BatEntry(lab, b.built.spec.name, display_path(b.path), b.built.spec.sha256,
                         b.built.model.length, b.built.model.construction,
                         b.built.model.material.name) for lab, b in zip(labels, loaded, strict=True)]
-    figures = _figures(spec, loaded, labels, ref, proto_inputs, engine, flat[0].created) \
-        if spec else []
+    figures = [study_figure(f, f.protocol, plans) for f, plans in planned]
     return compare(runs, ref, bats=entries, title=spec.title if spec else "", figures=figures,
+                   created=created,
                    study=spec.id if spec else None,
                    study_reference=spec.reference if spec else "",
                    study_notes=(spec.notes or "") if spec else "",
                    claims=spec.claims if spec else ())
 
 
-def _figures(spec: StudySpec, loaded: list[LoadedBat], labels: list[str], ref: int,
-             proto_inputs: list[ProtocolInputs], engine: str, created: str) -> list:
-    """The study's figures (each a sweep of its bats on one protocol condition)."""
-    from batcert.sweeps.study_figures import study_figure
+def _figure_plans(spec: StudySpec, loaded: list[LoadedBat], labels: list[str], ref: int,
+                  proto_inputs: list[ProtocolInputs], engine: str, created: str) -> list:
+    """Each study figure with the planned sweeps of its bats (each a protocol condition)."""
     by_id = {p.protocol.id: p for p in proto_inputs}
     out = []
     for f in spec.figures:
         bats = [(lab, b.built) for i, (lab, b) in enumerate(zip(labels, loaded, strict=True))
                 if f.bats == "all" or i != ref]
         p = by_id[f.protocol]
-        out.append(study_figure(f, bats, p.protocol, p.ball, engine, created))
+        out.append((f, figure_plans(f, bats, p.protocol, p.ball, engine, created)))
     return out

@@ -57,8 +57,8 @@ class Engine(Protocol):
     """What the runner needs of an engine tier."""
 
     name: str
-    #: metric name -> warning: metrics that this engine cannot resolve (e.g. BPF is 1 by
-    #: construction for a rigid bat)
+    #: metric name -> warning: metrics that this engine cannot resolve (e.g. a rigid bat's
+    #: BPF reflects only the ball's loss, not the bat)
     limitations: dict[str, str]
 
     def solve(self, bat: BatModel, ball: BallModel, pivot: float, batch: ImpactBatch,

@@ -139,8 +139,8 @@ def _rows(result: SweepResult) -> list[int]:
     n = len(result.points)
     if n <= MAX_ROWS:
         return list(range(n))
-    step = -(-n // MAX_ROWS)
-    return sorted(set(range(0, n, step)) | {n - 1})
+    import numpy as np
+    return sorted({int(i) for i in np.linspace(0, n - 1, MAX_ROWS).round()})
 
 
 def _summary_table(result: SweepResult) -> Table:

@@ -18,6 +18,7 @@ CONDITION_FIELDS: dict[str, str] = {
     "bbcor": "-", "collision_efficiency": "-", "impact_location": "m from pivot",
     "sweet_spot": "m from pivot", "rigid_sweet_spot": "m from pivot", "cop": "m from pivot",
     "pitch_speed": "m/s", "bat_angular_speed": "rad/s", "relative_speed": "m/s",
+    "at_window_edge": "bool",  # the located impact point lies on the search window's edge
 }
 # The per-variant quantities (the bat's mass properties about the pivot, the barrel).
 VARIANT_FIELDS: dict[str, str] = {

@@ -259,12 +259,24 @@ def _check_figures(v: dict, protocols: list[ProtocolSpec], data: Located,
             add("condition", f"protocol {p.id!r} has no condition {f['condition']!r} "
                 f"({', '.join(c.name for c in p.conditions)})")
     ids = [f["id"] for f in v["figures"] or []]
+    for i, fid in enumerate(ids):
+        if fid in ids[:i]:
+            errors.add(lookup(data, "figures", i, "id")[0], f"figures[{i}].id",
+                       f"figure id {fid!r} appears twice (it names the figure's files)")
+    metrics_of = {f["id"]: f["metrics"] for f in v["figures"] or []}
     for i, claim in enumerate(v["claims"] or []):
         if claim["check"].startswith(("opposite-trends", "figure-")):
             if claim["figure"] not in ids:
-                errors.add(lookup(data, "claims", i)[0], f"claims[{i}].figure",
+                errors.add(lookup(data, "claims", i, "figure")[0] if claim["figure"] else
+                       lookup(data, "claims", i)[0], f"claims[{i}].figure",
                            f"the {claim['check']} check needs `figure:`, the id of one of the "
                            f"study's figures ({', '.join(ids) or 'none'})")
         if claim["check"] == "opposite-trends" and not claim["metrics"]:
             errors.add(lookup(data, "claims", i)[0], f"claims[{i}].metrics",
                        "opposite-trends needs the two `metrics:` to compare")
+        elif claim["check"] == "opposite-trends" and claim["figure"] in metrics_of:
+            missing = [m for m in claim["metrics"] if m not in metrics_of[claim["figure"]]]
+            if missing:
+                errors.add(lookup(data, "claims", i, "metrics")[0], f"claims[{i}].metrics",
+                           f"figure {claim['figure']!r} does not plot {', '.join(missing)} "
+                           f"(it plots {', '.join(metrics_of[claim['figure']])})")

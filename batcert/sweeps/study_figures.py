@@ -13,7 +13,7 @@ from batcert.results.compare import StudyFigure, StudyFigureBat
 from batcert.specs.study import FigureSpec
 from batcert.sweeps.execute import execute
 from batcert.sweeps.sweep import Plan, collect
-from batcert.sweeps.variants import PARAMETERS, Case, parse_vary, read_range
+from batcert.sweeps.variants import PARAMETERS, Case, ParameterError, parse_vary, read_range
 
 if TYPE_CHECKING:
     from batcert.model.build import BuiltBat
@@ -21,27 +21,41 @@ if TYPE_CHECKING:
     from batcert.specs.protocol import ProtocolSpec
 
 
-def study_figure(spec: FigureSpec, bats: list[tuple[str, BuiltBat]], protocol: ProtocolSpec,
-                 ball: BallSpec, engine: str, created: str) -> StudyFigure:
-    """One figure: the sweep of ``spec.vary`` for every (label, bat), on ``spec.condition``."""
+def figure_plans(spec: FigureSpec, bats: list[tuple[str, BuiltBat]], protocol: ProtocolSpec,
+                 ball: BallSpec, engine: str, created: str) -> list[tuple[str, Plan]]:
+    """The sweep of ``spec.vary`` for every (label, bat), on ``spec.condition``, planned and
+    checked (a :class:`ParameterError` naming the figure, before anything runs)."""
     name, text = parse_vary(spec.vary)
-    p = protocol
-    one = replace(p, conditions=tuple(c for c in p.conditions if c.name == spec.condition))
-    out, percent = [], None
+    one = replace(protocol, conditions=tuple(c for c in protocol.conditions
+                                             if c.name == spec.condition))
+    plans = []
     for label, bat in bats:
-        base = Case(bat.spec, one)
-        axis = read_range(name, text, PARAMETERS[name].nominal(base, bat))
-        plan = Plan(base, bat, ball, engine, (axis,), created)
-        plan.check()
+        try:
+            base = Case(bat.spec, one)
+            axis = read_range(name, text, PARAMETERS[name].nominal(base, bat))
+            plan = Plan(base, bat, ball, engine, (axis,), created)
+            plan.check()
+        except ParameterError as exc:
+            raise ParameterError(f"study figure {spec.id!r}, bat {label!r}: {exc}") from None
+        plans.append((label, plan))
+    return plans
+
+
+def study_figure(spec: FigureSpec, protocol: str, plans: list[tuple[str, Plan]]) -> StudyFigure:
+    """One figure from its planned sweeps (:func:`figure_plans`)."""
+    out, percent = [], None
+    for label, plan in plans:
+        (axis,) = plan.axes
         result = collect(plan, execute(plan), None)
         series = result.conditions[0].series
+        wanted = [*spec.metrics, "at_window_edge"]  # the edge: where a sweet spot is not located
         out.append(StudyFigureBat(label, axis.nominal, list(axis.values),
-                                  {m: series[m] for m in spec.metrics}))
+                                  {m: series[m] for m in wanted}))
         if axis.percent and axis.nominal:
             percent = [v / axis.nominal * 100 for v in axis.values]
-    dim = PARAMETERS[name].dimension
-    return StudyFigure(spec.id, spec.title, p.id, spec.condition, name, dim, percent,
-                       list(spec.metrics), out)
+    name = plans[0][1].axes[0].name if plans else parse_vary(spec.vary)[0]
+    return StudyFigure(spec.id, spec.title, protocol, spec.condition, name,
+                       PARAMETERS[name].dimension, percent, list(spec.metrics), out)
 
 
 def check_figures(study) -> None:
@@ -49,11 +63,11 @@ def check_figures(study) -> None:
     an :class:`~batcert.errors.InputError` at the figure's line otherwise."""
     from batcert.errors import Collector
     from batcert.results.sweep import CONDITION_FIELDS
-    from batcert.sweeps.variants import ParameterError
     errors = Collector(study.path)
     for i, f in enumerate(study.figures):
         try:
-            parse_vary(f.vary)
+            name, text = parse_vary(f.vary)
+            read_range(name, text, 1.0, check_bounds=False)  # the form: units, N, percent
         except ParameterError as exc:
             errors.add(study.source.line("figures", i, "vary"), f"figures[{i}].vary", str(exc))
         for m in f.metrics:

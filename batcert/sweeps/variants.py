@@ -339,8 +339,8 @@ def read_value(text: str, parameter: Parameter, nominal: float | None) -> tuple[
         raise ParameterError(f"{parameter.name}: {exc}") from None
 
 
-def read_range(name: str, spec: str, nominal: float | None, points: int | None = None
-               ) -> Axis:
+def read_range(name: str, spec: str, nominal: float | None, points: int | None = None,
+               check_bounds: bool = True) -> Axis:
     """``START:STOP:N`` (N evenly spaced values, both ends included), ``START:STOP`` (with
     ``points``) or one value; each end ``NN%`` or a quantity."""
     parameter = lookup_parameter(name)
@@ -363,7 +363,7 @@ def read_range(name: str, spec: str, nominal: float | None, points: int | None =
         if n > MAX_POINTS:
             raise ParameterError(f"{name}: at most {MAX_POINTS} values per parameter")
         values = tuple(float(x) for x in np.linspace(start, stop, n))
-    lo, hi = parameter.bounds
+    lo, hi = parameter.bounds if check_bounds else (-np.inf, np.inf)
     bad = [v for v in values if not (np.isfinite(v) and lo <= v <= hi)]
     if bad:
         from batcert.units import show

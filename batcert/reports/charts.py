@@ -141,7 +141,8 @@ def bar_chart(
     ``baseline`` (zero by default, so bar lengths compare honestly); with ``baseline=None`` the
     axis fits the values and bars grow from its bottom.
     """
-    vals = finite([v for s in series for v in s.values]) + finite([limit])
+    vals = finite([v for s in series for v in s.values]) + finite([limit]) \
+        + finite([x for s in series for e in (s.errors or []) if e for x in e])
     lo, hi = (min(vals), max(vals)) if vals else (0.0, 1.0)
     if baseline is not None:
         lo, hi = min(lo, baseline), max(hi, baseline)
@@ -165,7 +166,8 @@ def bar_chart(
     c = Canvas(width, height, title or y_label)
     if title:
         c.text(left, 18, title, size=14, weight="bold")
-    c.legend([(s.name, color(i), "", "bar") for i, s in enumerate(series)], left, title_h, plot_w)
+    c.legend([(s.name, _bar_fill(s, i), "", "bar") for i, s in enumerate(series)], left,
+             title_h, plot_w)
     axes(c, left, top, plot_w, plot_h, (0.0, 1.0), (y_lo, y_hi), "", y_label, None,
           x_ticks=False)
 
@@ -176,6 +178,12 @@ def bar_chart(
         c.text(left + plot_w - 4, y - 5, f"{limit_label} {value_format.format(limit)}",
                size=11, anchor="end")
     return c.done()
+
+
+def _bar_fill(s: BarSeries, i: int) -> str:
+    """The series' colour (its ``style``, else its position), lighter when ``shade``."""
+    col = color(i if s.style is None else s.style)
+    return col + "80" if s.shade else col  # #RRGGBBAA: half opacity
 
 
 def _draw_bars(c: Canvas, categories: Sequence[str], series: Sequence[BarSeries],
@@ -196,7 +204,13 @@ def _draw_bars(c: Canvas, categories: Sequence[str], series: Sequence[BarSeries]
             x = gx + i * bar_w
             y0, y1 = sorted((py(base), py(v)))
             c.raw(f'<rect x="{fmt_xy(x + 1)}" y="{fmt_xy(y0)}" width="{fmt_xy(bar_w - 2)}" '
-                  f'height="{fmt_xy(max(y1 - y0, 0.5))}" fill="{color(i)}"/>')
+                  f'height="{fmt_xy(max(y1 - y0, 0.5))}" fill="{_bar_fill(s, i)}"/>')
+            err = s.errors[k] if s.errors and k < len(s.errors) else None
+            if err is not None and all(math.isfinite(e) for e in err):
+                xm, (ya, yb) = x + bar_w / 2, (py(err[0]), py(err[1]))
+                c.line(xm, ya, xm, yb, stroke=INK, width=1.3)
+                for yy in (ya, yb):
+                    c.line(xm - 4, yy, xm + 4, yy, stroke=INK, width=1.3)
             label = value_format.format(v)
             up = v >= base
             ty = py(v) - 4 if up else py(v) + 12

@@ -53,14 +53,15 @@ def _protocol_figures(result: ComparisonResult, p: ProtocolComparison) -> list[B
     slug = fmt.slugify(p.protocol)
     out.append(BarFigure(
         f"{slug}--metric", f"{metric} per condition", metric + unit, cats,
-        [svg.BarSeries(lab, [c.bats[lab].value for c in p.conditions]) for lab in labels],
+        [svg.BarSeries(lab, [c.bats[lab].value for c in p.conditions], style=k)
+         for k, lab in enumerate(labels)],
         caption=f"{metric} of each bat in each condition"
         + (f"; the dashed line is the protocol limit "
            f"{fmt.metric_value(p.limit, p.metric)}." if p.limit is not None else "."),
         limit=p.limit, value_format="{:.2f}" if p.metric == "exit-speed" else "{:.3f}",
         width=width))
-    pcts = [svg.BarSeries(lab, [_pct_for_chart(c.bats[lab].relative) for c in p.conditions])
-            for lab in compared]
+    pcts = [svg.BarSeries(lab, [_pct_for_chart(c.bats[lab].relative) for c in p.conditions],
+                          style=labels.index(lab)) for lab in compared]
     if any(v for s in pcts for v in s.values):
         out.append(BarFigure(
             f"{slug}--relative", f"P against {result.reference}", "P [%]", cats, pcts,
@@ -68,10 +69,11 @@ def _protocol_figures(result: ComparisonResult, p: ProtocolComparison) -> list[B
                     f"{result.reference} (P = 0), per condition.", value_format="{:+.2f}",
             width=width))
     spots = []
-    for lab in labels:  # each bat's sweet spot next to its COP
+    for k, lab in enumerate(labels):  # each bat's sweet spot next to its COP, one colour a bat
         spots.append(svg.BarSeries(f"{lab}: sweet spot",
-                                   [c.bats[lab].sweet_spot for c in p.conditions]))
-        spots.append(svg.BarSeries(f"{lab}: COP", [c.bats[lab].cop for c in p.conditions]))
+                                   [c.bats[lab].sweet_spot for c in p.conditions], style=k))
+        spots.append(svg.BarSeries(f"{lab}: COP (lighter)", [c.bats[lab].cop for c in p.conditions],
+                                   style=k, shade=True))
     edge = sum(c.bats[lab].sweet_spot_at_edge for c in p.conditions for lab in labels)
     edge_text = (f" In {edge} of {len(p.conditions) * len(labels)} bat-conditions the sweet spot "
                  "lies on the search window's edge: the bar shows the edge, not a located "
@@ -150,7 +152,8 @@ def _values(result: ComparisonResult, p: ProtocolComparison, show_setup: bool) -
         + [fmt.DASH if spread[lab].min is None
            else f"{fmt.percent(spread[lab].min)} to {fmt.percent(spread[lab].max)}"
            for lab in compared],
-        [f"aggregate ({fmt.aggregate_word(p.aggregate)})"] + ([""] if show_setup else [])
+        [f"protocol result ({fmt.aggregate_word(p.aggregate)} of the metric over the "
+         "conditions), and its P"] + ([""] if show_setup else [])
         + [fmt.metric_value(p.aggregate_value[lab], p.metric) for lab in labels]
         + [fmt.percent(p.aggregate_relative[lab]) for lab in compared],
     ]
@@ -234,17 +237,26 @@ def _overview(result: ComparisonResult, charts: bool) -> dict[str, Any]:
 def _overview_figure(result: ComparisonResult) -> BarFigure | None:
     """Mean P of each compared bat under each protocol (None when every P is zero)."""
     from batcert.reports import svg
-    compared = result.compared
+    compared, labels = result.compared, [b.label for b in result.bats]
     series_values = [[_pct_for_chart(p.relative_spread[lab].mean) for p in result.protocols]
                      for lab in compared]
     if not any(v for s in series_values for v in s):
         return None
+
+    def spread(lab: str, p: ProtocolComparison) -> tuple[float, float] | None:
+        s = p.relative_spread[lab]
+        if s.min is None or s.max is None or len(p.conditions) < 2:
+            return None
+        return (round(s.min * 100, 4), round(s.max * 100, 4))
     cats = [p.protocol for p in result.protocols]
-    return BarFigure("overview", f"Mean P against {result.reference}", "mean P [%]", cats,
-                     [svg.BarSeries(lab, vals) for lab, vals in
-                      zip(compared, series_values, strict=True)],
-                     caption="Mean P of each bat under each protocol.", value_format="{:+.2f}",
-                     width=chart_width(cats, len(compared)))
+    return BarFigure("overview", f"Mean P against {result.reference}", "mean P across the "
+                     "conditions [%]", cats,
+                     [svg.BarSeries(lab, vals, style=labels.index(lab),
+                                    errors=[spread(lab, p) for p in result.protocols])
+                      for lab, vals in zip(compared, series_values, strict=True)],
+                     caption="Mean of P over each protocol's conditions, for each bat; the "
+                     "bars' whiskers span P's range (smallest to largest condition).",
+                     value_format="{:+.2f}", width=chart_width(cats, len(compared)))
 
 
 def _mass(result: ComparisonResult) -> Table:

@@ -48,6 +48,28 @@ class BarFigure:
 Figure = LineFigure | BarFigure
 
 
+def legend_names(series: Sequence[Series]) -> list[str]:
+    """Each line's legend name, with "(same as X)" when its points coincide with an earlier
+    line's, so that a line hidden under another is not taken for missing."""
+    import math
+    names = []
+    for i, s in enumerate(series):
+        name = s.name
+        for t in series[:i]:
+            if len(t.x) == len(s.x) and len(s.x) > 0 and all(
+                    math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12)
+                    for a, b in zip([*t.x, *t.y], [*s.x, *s.y], strict=True)
+                    if not (math.isnan(a) and math.isnan(b))):
+                name = f"{s.name} (same as {t.name})"
+                break
+        names.append(name)
+    return names
+
+
+def named_series(series: Sequence[Series]) -> list[Series]:
+    return [Series(n, s.x, s.y) for n, s in zip(legend_names(series), series, strict=True)]
+
+
 def svg_of(fig: Figure) -> str:
     """The figure as inline SVG for an HTML report."""
     from batcert.reports import charts
@@ -55,7 +77,7 @@ def svg_of(fig: Figure) -> str:
         return charts.bar_chart(fig.categories, fig.series, title=fig.title, y_label=fig.y_label,
                                 limit=fig.limit, value_format=fig.value_format,
                                 baseline=fig.baseline, width=fig.width)
-    return charts.line_chart(fig.series, title=fig.title, x_label=fig.x_label,
+    return charts.line_chart(named_series(fig.series), title=fig.title, x_label=fig.x_label,
                              y_label=fig.y_label, vlines=fig.vlines, points=fig.points,
                              point_legend=fig.point_legend, y2=fig.y2, hlines=fig.hlines,
                              x_range=fig.x_range)

@@ -15,7 +15,7 @@ import textwrap
 from collections.abc import Sequence
 from pathlib import Path
 
-from batcert.reports.figure import BarFigure, Figure, LineFigure
+from batcert.reports.figure import BarFigure, Figure, LineFigure, named_series
 from batcert.reports.svg import DASHES, PALETTE
 
 FIGURE_FORMATS = ("svg", "pdf", "png")
@@ -32,7 +32,7 @@ def _color(i: int) -> str:
 
 
 def _draw_line(ax, fig: LineFigure) -> None:
-    for i, s in enumerate(fig.series):
+    for i, s in enumerate(named_series(fig.series)):
         xs = [x for x, y in zip(s.x, s.y, strict=True)]
         ys = [math.nan if y is None else y for y in s.y]
         ax.plot(xs, ys, color=_color(i), linestyle=_dash(i), linewidth=1.6, label=s.name,
@@ -67,9 +67,20 @@ def _draw_bars(ax, fig: BarFigure) -> None:
         xs = [k - 0.4 + width * (i + 0.5) for k in range(len(fig.categories))]
         vals = [math.nan if v is None else v for v in s.values]
         bottom = fig.baseline if fig.baseline is not None else 0.0
-        ax.bar(xs, [v - bottom for v in vals], width * 0.92, bottom=bottom, color=_color(i),
-               label=s.name)
+        col = _color(i if s.style is None else s.style)
+        err = None
+        if s.errors:
+            lo = [v - e[0] if e else 0.0 for v, e in zip(vals, s.errors, strict=True)]
+            hi = [e[1] - v if e else 0.0 for v, e in zip(vals, s.errors, strict=True)]
+            err = [lo, hi]
+        ax.bar(xs, [v - bottom for v in vals], width * 0.92, bottom=bottom, color=col,
+               alpha=0.5 if s.shade else 1.0, label=s.name, yerr=err, capsize=3,
+               error_kw={"elinewidth": 1.0, "ecolor": "#222222"})
     ax.set_xticks(range(len(fig.categories)), list(fig.categories))
+    if sum(len(c) for c in fig.categories) > 60:  # long names (protocol ids) would overlap
+        ax.tick_params(axis="x", labelrotation=20)
+        for label in ax.get_xticklabels():
+            label.set_horizontalalignment("right")
     if fig.baseline is None:
         vals = [v for s in fig.series for v in s.values if v is not None]
         if vals:
@@ -93,7 +104,8 @@ def render(fig: Figure, fmt: str) -> bytes:
                                 "grid.color": "#d9d9d9", "grid.linewidth": 0.6}):
         n = len(fig.series)
         cols = 2 if max((len(x.name) for x in fig.series), default=0) <= 40 else 1
-        rows = 0 if n < 2 else -(-n // cols)  # legend rows below the axes
+        least = 1 if isinstance(fig, BarFigure) else 2  # a bar's colour always needs its name
+        rows = 0 if n < least else -(-n // cols)  # legend rows below the axes
         f = MplFigure(figsize=(WIDTH_IN, HEIGHT_IN + 0.18 * rows), layout="constrained")
         ax = f.add_subplot()
         (_draw_bars if isinstance(fig, BarFigure) else _draw_line)(ax, fig)  # type: ignore[arg-type]

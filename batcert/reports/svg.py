@@ -37,10 +37,17 @@ class Series:
 
 @dataclass(frozen=True)
 class BarSeries:
-    """One group member of a bar chart: a value per category (None = no bar)."""
+    """One group member of a bar chart: a value per category (None = no bar).
+
+    ``style`` picks the colour (default: the series' position), so that one bat keeps one
+    colour across charts; ``shade`` draws the bar lighter (a second quantity of the same bat);
+    ``errors`` draws a (low, high) interval on each bar (None = none)."""
 
     name: str
     values: Sequence[float | None]
+    style: int | None = None
+    shade: bool = False
+    errors: Sequence[tuple[float, float] | None] | None = None
 
 
 @dataclass(frozen=True)

@@ -198,3 +198,40 @@ def test_a_league_has_no_figures():
     repo = Path(__file__).resolve().parents[2]
     league = run_league("mlb", [str(repo / "bats" / "ash-34.yaml")], engine="rigid")
     assert figures_of(league) == []
+
+
+def test_legend_says_when_curves_coincide():
+    """A line drawn exactly under another is named "(same as ...)" in both renderers' legends;
+    a line that differs anywhere keeps its name."""
+    from batcert.reports.figure import legend_names
+    a = Series("stationary-bat", [0.5, 0.6], [40.0, 41.0])
+    b = Series("stationary-ball", [0.5, 0.6], [40.0, 41.0])  # the same curve
+    c = Series("pitched-and-swung", [0.5, 0.6], [40.0, 41.000001])  # differs by 2.4e-8
+    assert legend_names([a, b, c]) == ["stationary-bat", "stationary-ball (same as "
+                                       "stationary-bat)", "pitched-and-swung"]
+
+
+def test_comparison_charts_keep_one_colour_per_bat_and_show_p_ranges():
+    """Every comparison chart colours a bat by its place among the bats (the P charts, which
+    leave the reference out, too; the COP bar is the bat's colour, lighter), and the overview's
+    whiskers span P's range over the conditions around its mean."""
+    from batcert.commands.compare import run_comparison
+    from batcert.reports.compare_view import comparison_figures
+    three = Path(__file__).resolve().parents[2] / "protocols/studies/smith2001-bpf-sweet-spot.yaml"
+    result = run_comparison(["ash-34", "aluminium-34", "r161"], [str(three)], engine="rigid")
+    labels = [b.label for b in result.bats]
+    figs = [f for f in comparison_figures(result) if isinstance(f, BarFigure)]
+    for fig in figs:
+        for s in fig.series:
+            bat = next(lab for lab in labels if s.name == lab or s.name.startswith(f"{lab}: "))
+            assert s.style == labels.index(bat), (fig.name, s.name)
+            assert s.shade == s.name.endswith("COP (lighter)")
+    overview = next(f for f in figs if f.name == "overview")
+    p = result.protocols[0]
+    for s in overview.series:
+        spread = p.relative_spread[s.name]
+        (mean,), ((lo, hi),) = s.values, s.errors
+        # the chart rounds P to 1e-4 % (as its bars) so that rounding noise sets no axis
+        assert lo == pytest.approx(spread.min * 100, abs=5e-5)
+        assert hi == pytest.approx(spread.max * 100, abs=5e-5)
+        assert lo <= mean <= hi

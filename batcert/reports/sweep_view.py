@@ -89,9 +89,14 @@ def sweep_figures(result: SweepResult) -> list[Figure]:
         series += _series(result, result.series["value_low"], "plausible barrel: low")
         series += _series(result, result.series["value_high"], "plausible barrel: high")
     nominal = []
+    line = 0  # the line the nominal bat belongs to: on a grid, the second axis's nominal value
+    if len(result.axes) == 2:
+        second = result.axes[1]
+        line = second.values.index(second.nominal) if second.nominal in second.values else -1
     if result.nominal is not None and result.nominal.value is not None \
-            and first.nominal is not None:
-        nominal = [Point(_x(first, [first.nominal])[0], result.nominal.value, len(series) - 1, "as measured")]
+            and first.nominal is not None and line >= 0:
+        nominal = [Point(_x(first, [first.nominal])[0], result.nominal.value, line,
+                         "as measured")]
     figs.append(LineFigure(
         "metric", f"{metric} ({result.aggregate}) against {first.name}", x_label,
         f"{metric} [{'m/s' if result.metric == 'exit-speed' else '-'}]", series,

@@ -1,0 +1,59 @@
+"""A lab session loaded and its hits reduced: the bat (for its MOI about the test pivot), the
+ball lot (mass, rigid-wall COR), the hits, and per hit every reduced quantity."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from batcert.methods.reduction import HitReduction, reduce_hits
+from batcert.model.build import BuiltBat, build_bat
+from batcert.model.mass import mass_properties
+from batcert.specs.ball import BallSpec, load_ball
+from batcert.specs.bat import load_bat
+from batcert.specs.hits import Hits, SessionSpec, load_hits, load_session
+from batcert.specs.resolve import NotFound, resolve
+
+
+@dataclass(frozen=True)
+class LabSession:
+    spec: SessionSpec
+    built: BuiltBat
+    ball: BallSpec
+    hits: Hits
+    moi_pivot: float  # the bat's MOI about the test pivot [kg m^2]
+    moi_source: str  # "measured" (moved to the pivot by parallel axes) or "model"
+    impact_location: np.ndarray  # [m from the pivot]
+
+
+def load_lab_session(path: str | Path) -> LabSession:
+    """The session file, its bat and ball (shipped names or paths relative to it) and hits."""
+    spec = load_session(path)
+    where = Path(spec.path)
+    try:
+        bat_path = resolve("bat", spec.bat, relative_to=where)
+        ball_path = resolve("ball", spec.ball, relative_to=where)
+    except NotFound as exc:
+        field_ = "bat" if "bat" in str(exc) else "ball"
+        raise spec.source.problem(field_, str(exc)) from None
+    built = build_bat(load_bat(bat_path))
+    ball = load_ball(ball_path)
+    hits = load_hits(where.parent / spec.hits, spec.location_from, spec.gate_spacing)
+    mp = mass_properties(built, spec.pivot)
+    moi, source = (mp.measured_moi_pivot, "measured") if mp.measured_moi_pivot is not None \
+        else (mp.moi_pivot, "model")
+    length = built.model.length
+    r = {"tip": length - spec.pivot - hits.impact_location,
+         "knob": hits.impact_location - spec.pivot,
+         "pivot": hits.impact_location}[spec.location_from]
+    return LabSession(spec, built, ball, hits, float(moi), source, r)
+
+
+def reduce_session(session: LabSession) -> HitReduction:
+    """Every hit of the session reduced (docs/lab-reduction.md)."""
+    h = session.hits
+    return reduce_hits(h.inbound_speed, h.rebound_speed, session.impact_location,
+                       session.moi_pivot, session.ball.model.mass, session.ball.model.cor,
+                       h.bat_angular_speed_after)

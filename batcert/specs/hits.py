@@ -1,0 +1,254 @@
+"""Measured hit data: a session file (YAML: the bat, the ball lot, the pivot, the instruments)
+and its hits (CSV, one row per hit, units in the header). docs/lab-reduction.md documents both.
+
+A hits CSV::
+
+    hit,ball,inbound_speed [m/s],rebound_speed [m/s],impact_location [in from tip],valid,note
+    1,B01,60.80,15.12,6.0,yes,
+    2,B01,60.75,15.31,6.5,yes,
+
+Columns (any order; names as in docs/nomenclature.md, the unit in brackets after the name):
+``hit`` (a number), ``ball`` (an identifier), ``inbound_speed`` and ``rebound_speed`` (a
+speed) or ``inbound_gate_time`` and ``rebound_gate_time`` (the time to cross the session's
+``gate_spacing``), ``impact_location`` (a length, from the end named by the session's
+``location_from``), optionally ``bat_angular_speed_after`` (BPF method), ``valid`` (yes/no,
+default yes) and ``note``. Every problem of the file is reported at once, with its line, column
+and field, as for YAML inputs.
+"""
+
+from __future__ import annotations
+
+import csv
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from batcert.conventions import DEFAULT_PIVOT
+from batcert.errors import Collector, InputError, Problem
+from batcert.specs.common import HEADER_FIELDS, Source, load_checked, spec_from
+from batcert.specs.schema import Field, Schema, choice, quantity, text
+from batcert.specs.yamlio import load_yaml
+
+SESSION_SCHEMA = Schema("hit session", (
+    Field("name", text(), "Session name shown in reports.", required=True),
+    *HEADER_FIELDS,
+    Field("bat", text(), "The bat tested: shipped name or path (relative to this file).",
+          required=True),
+    Field("ball", text(), "The ball lot: shipped name or path of a ball file (mass, COR).",
+          required=True),
+    Field("pivot", quantity("length", minimum=0.0), "Pivot of the test, from the knob.",
+          default=DEFAULT_PIVOT),
+    Field("hits", text(), "The hits CSV, relative to this file.", required=True),
+    Field("location_from", choice("tip", "knob", "pivot"), "The end the CSV's "
+          "impact_location is measured from.", default="tip"),
+    Field("gate_spacing", quantity("length", positive=True), "Distance between the light "
+          "gates, for hits given as gate times."),
+))
+
+# column -> (dimension or None, required); a speed pair or a gate-time pair is required
+COLUMNS: dict[str, tuple[str | None, bool]] = {
+    "hit": (None, True), "ball": (None, True),
+    "inbound_speed": ("speed", False), "rebound_speed": ("speed", False),
+    "inbound_gate_time": ("time", False), "rebound_gate_time": ("time", False),
+    "impact_location": ("length", True), "bat_angular_speed_after": ("angular_speed", False),
+    "valid": (None, False), "note": (None, False),
+}
+_HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*(.+?)\s*\])?\s*$")
+_UNIT_AND_END = re.compile(r"^(.*?)\s+from\s+(tip|knob|pivot)$")
+MAX_HITS = 100_000
+
+
+@dataclass(frozen=True)
+class SessionSpec:
+    """A validated session file (SI values)."""
+
+    source: Source
+    name: str
+    description: str | None
+    reference: str | None
+    version: str | None
+    bat: str
+    ball: str
+    pivot: float  # [m from knob]
+    hits: str  # CSV path relative to the session file
+    location_from: str  # tip | knob | pivot
+    gate_spacing: float | None  # [m]
+
+    @property
+    def path(self) -> str:
+        return self.source.path
+
+
+@dataclass(frozen=True)
+class Hits:
+    """The hits of a CSV, as arrays (SI; NaN where a value is not given)."""
+
+    path: str
+    sha256: str
+    hit: np.ndarray  # hit numbers as written
+    ball: list[str]  # ball identifiers
+    inbound_speed: np.ndarray  # [m/s]
+    rebound_speed: np.ndarray  # [m/s]
+    impact_location: np.ndarray  # [m from the session's location_from end]
+    bat_angular_speed_after: np.ndarray  # [rad/s], NaN where not measured
+    valid: np.ndarray  # bool: the operator's validity flag
+    note: list[str]
+    line: list[int]  # the CSV line of each hit
+
+
+def load_session(path: str | Path) -> SessionSpec:
+    data = load_yaml(path)
+    values = load_checked(path, SESSION_SCHEMA, data)
+    return spec_from(SessionSpec, values, source=Source.of(path, data))
+
+
+def _cell_columns(raw: str) -> list[int]:
+    """1-based character column where each comma-separated field of a raw line starts."""
+    starts, col, quoted = [1], 1, False
+    for ch in raw:
+        col += 1
+        if ch == '"':
+            quoted = not quoted
+        elif ch == "," and not quoted:
+            starts.append(col)
+    return starts
+
+
+def _unit_factor(name: str, unit: str, dimension: str, line: int, column: int,
+                 errors: Collector) -> float | None:
+    """The SI value of one ``unit`` of ``dimension`` (a header's bracket)."""
+    from batcert.units import UnitError, parse_quantity
+    try:
+        return parse_quantity(f"1 {unit}", dimension)
+    except UnitError as exc:
+        errors.add(line, name, f"the unit in the header: {exc}", column=column)
+        return None
+
+
+def load_hits(path: str | Path, location_from: str = "tip",
+              gate_spacing: float | None = None) -> Hits:
+    """Read a hits CSV; raise :class:`InputError` with every problem (line, column, field)."""
+    from batcert.specs.common import sha256_of
+    path = Path(path)
+    try:
+        raw = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError([Problem(str(path), None, "", f"cannot read the hits: {exc}")]) from None
+    errors = Collector(path)
+    lines = raw.splitlines()
+    rows = [(n + 1, line) for n, line in enumerate(lines) if line.strip()
+            and not line.lstrip().startswith("#")]
+    if not rows:
+        raise InputError([Problem(str(path), None, "", "no header row and no hits")])
+    head_line, head_raw = rows[0]
+    header = next(csv.reader([head_raw]))
+    head_cols = _cell_columns(head_raw)
+    columns: dict[str, tuple[int, float | None]] = {}  # name -> (index, SI factor)
+    for j, cell in enumerate(header):
+        m = _HEADER.match(cell)
+        if not m or m.group(1) not in COLUMNS:
+            import difflib
+            name = m.group(1) if m else cell.strip()
+            close = difflib.get_close_matches(name, list(COLUMNS), n=1, cutoff=0.6)
+            hint = f"; did you mean '{close[0]}'?" if close else ""
+            errors.add(head_line, cell.strip() or f"column {j + 1}", f"unknown column {cell.strip()!r} (columns: "
+                       f"{', '.join(COLUMNS)}){hint}", column=head_cols[j])
+            continue
+        name, unit = m.group(1), m.group(2)
+        if name in columns:
+            errors.add(head_line, name, "the column appears twice", column=head_cols[j])
+            continue
+        dimension = COLUMNS[name][0]
+        factor = None
+        if dimension is not None:
+            if unit is None:
+                errors.add(head_line, name, f"give the unit in brackets, e.g. '{name} "
+                           f"[{'in from tip' if name == 'impact_location' else 'm/s'}]'",
+                           column=head_cols[j])
+                continue
+            if name == "impact_location":
+                ends = _UNIT_AND_END.match(unit)
+                if ends and ends.group(2) != location_from:
+                    errors.add(head_line, name, f"the header says from the {ends.group(2)}, the "
+                               f"session says location_from: {location_from}",
+                               column=head_cols[j])
+                unit = ends.group(1) if ends else unit
+            factor = _unit_factor(name, unit, dimension, head_line, head_cols[j], errors)
+        columns[name] = (j, factor)
+    for name, (_, required) in COLUMNS.items():
+        if required and name not in columns:
+            errors.add(head_line, name, f"the column {name!r} is missing")
+    speeds = {"inbound_speed", "rebound_speed"} <= set(columns)
+    gates = {"inbound_gate_time", "rebound_gate_time"} <= set(columns)
+    if not speeds and not gates:
+        errors.add(head_line, "inbound_speed", "give the ball's speeds (inbound_speed and "
+                   "rebound_speed) or its gate times (inbound_gate_time and rebound_gate_time)")
+    if gates and not speeds and gate_spacing is None:
+        errors.add(head_line, "inbound_gate_time", "gate times need the session's gate_spacing")
+    errors.raise_if_any()
+    if len(rows) - 1 > MAX_HITS:
+        raise InputError([Problem(str(path), None, "", f"more than {MAX_HITS} hits")])
+
+    out: dict[str, list] = {k: [] for k in ("hit", "ball", "vi", "vr", "r", "w2", "valid",
+                                           "note", "line")}
+    for line_no, row_raw in rows[1:]:
+        cells = next(csv.reader([row_raw]))
+        starts = _cell_columns(row_raw)
+        if len(cells) != len(header):
+            errors.add(line_no, "", f"{len(cells)} fields, the header has {len(header)}")
+            continue
+
+        def number(name: str, line_no=line_no, cells=cells, starts=starts) -> float:
+            if name not in columns:
+                return float("nan")
+            j, factor = columns[name]
+            text_ = cells[j].strip()
+            if text_ == "" and not COLUMNS[name][1] and name == "bat_angular_speed_after":
+                return float("nan")
+            try:
+                value = float(text_)
+            except ValueError:
+                errors.add(line_no, name, f"expected a number, got {text_!r}", column=starts[j])
+                return float("nan")
+            if not np.isfinite(value):
+                errors.add(line_no, name, f"expected a finite number, got {text_!r}",
+                           column=starts[j])
+            return value * (factor if factor is not None else 1.0)
+
+        def positive(name: str, value: float, line_no=line_no, starts=starts) -> float:
+            if np.isfinite(value) and value <= 0:
+                errors.add(line_no, name, "must be above zero", column=starts[columns[name][0]])
+            return value
+
+        if speeds:
+            vi = positive("inbound_speed", number("inbound_speed"))
+            vr = number("rebound_speed")
+        else:
+            ti = positive("inbound_gate_time", number("inbound_gate_time"))
+            tr = positive("rebound_gate_time", number("rebound_gate_time"))
+            assert gate_spacing is not None
+            vi, vr = gate_spacing / ti, gate_spacing / tr
+        if np.isfinite(vr) and vr < 0:
+            errors.add(line_no, "rebound_speed", "is a magnitude: must not be negative",
+                       column=starts[columns["rebound_speed"][0]] if speeds else None)
+        valid_text = cells[columns["valid"][0]].strip().lower() if "valid" in columns else ""
+        if valid_text not in ("", "yes", "no", "true", "false", "1", "0"):
+            errors.add(line_no, "valid", f"expected yes or no, got {valid_text!r}",
+                       column=starts[columns["valid"][0]])
+        out["hit"].append(number("hit"))
+        out["ball"].append(cells[columns["ball"][0]].strip())
+        out["vi"].append(vi)
+        out["vr"].append(vr)
+        out["r"].append(number("impact_location"))
+        out["w2"].append(number("bat_angular_speed_after"))
+        out["valid"].append(valid_text not in ("no", "false", "0"))
+        out["note"].append(cells[columns["note"][0]].strip() if "note" in columns else "")
+        out["line"].append(line_no)
+    if not out["line"]:
+        errors.add(head_line, "", "the file has a header but no hits")
+    errors.raise_if_any()
+    return Hits(str(path), sha256_of(path), np.asarray(out["hit"]), out["ball"],
+                np.asarray(out["vi"]), np.asarray(out["vr"]), np.asarray(out["r"]),
+                np.asarray(out["w2"]), np.asarray(out["valid"], bool), out["note"], out["line"])

@@ -1,0 +1,66 @@
+"""The hits CSV (batcert.specs.hits): every problem of a file reported at once with its line,
+column and field; units from the header; gate times."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from batcert.errors import InputError
+from batcert.specs.hits import load_hits
+
+HEAD = "hit,ball,inbound_speed [mph],rebound_speed [m/s],impact_location [in from tip],valid,note"
+
+
+def write(tmp_path, text):
+    p = tmp_path / "hits.csv"
+    p.write_text(text, encoding="utf-8")
+    return p
+
+
+def test_units_from_the_header(tmp_path):
+    h = load_hits(write(tmp_path, f"# a comment\n{HEAD}\n1,B1,136,15.5,6,yes,first\n"))
+    assert h.inbound_speed[0] == pytest.approx(136 * 0.44704, abs=1e-12)
+    assert h.rebound_speed[0] == 15.5 and h.impact_location[0] == pytest.approx(6 * 0.0254)
+    assert h.line == [3] and h.valid[0] and h.note == ["first"] and h.ball == ["B1"]
+    assert np.isnan(h.bat_angular_speed_after[0])
+
+
+def test_gate_times(tmp_path):
+    text = ("hit,ball,inbound_gate_time [ms],rebound_gate_time [ms],impact_location [m from tip]"
+            "\n1,B1,8.0,32.0,0.15\n")
+    h = load_hits(write(tmp_path, text), gate_spacing=0.5)
+    assert h.inbound_speed[0] == pytest.approx(62.5) and h.rebound_speed[0] == pytest.approx(15.625)
+    with pytest.raises(InputError, match="gate times need the session's gate_spacing"):
+        load_hits(write(tmp_path, text))
+
+
+def test_every_problem_with_line_column_and_field(tmp_path):
+    text = (f"{HEAD}\n"
+            "1,B1,136,15.5,6,yes,\n"
+            "2,B1,fast,15.5,6,maybe,\n"  # not a number; not yes/no
+            "3,B1,136,15.5\n")  # too few fields
+    with pytest.raises(InputError) as err:
+        load_hits(write(tmp_path, text))
+    got = {(p.line, p.field, p.column) for p in err.value.problems}
+    assert (3, "inbound_speed", 6) in got  # "fast" starts at character 6 of line 3
+    assert (3, "valid", 18) in got  # "maybe" at character 18
+    assert any(p.line == 4 and "fields" in p.message for p in err.value.problems)
+
+
+def test_header_problems(tmp_path):
+    text = ("hit,ball,inbound_sped [m/s],rebound_speed,impact_location [in from knob]\n"
+            "1,B1,60,15,6\n")
+    with pytest.raises(InputError) as err:
+        load_hits(write(tmp_path, text), location_from="tip")
+    messages = " | ".join(p.message for p in err.value.problems)
+    assert "did you mean 'inbound_speed'?" in messages
+    assert "give the unit in brackets" in messages  # rebound_speed
+    assert "the header says from the knob" in messages
+
+
+def test_a_negative_rebound_and_an_empty_file(tmp_path):
+    with pytest.raises(InputError, match="magnitude"):
+        load_hits(write(tmp_path, f"{HEAD}\n1,B1,136,-15,6,yes,\n"))
+    with pytest.raises(InputError, match="no hits"):
+        load_hits(write(tmp_path, f"{HEAD}\n"))

@@ -636,6 +636,46 @@ def design(bat, protocol, parameter, range_text, points, tolerance, workers, sch
     sys.exit(0 if result.design.roots else 1)
 
 
+REDUCE_EXIT_CODES = """\b
+Exit codes:
+  0  the certified value passes under the decision rule (or the protocol sets no limit)
+  1  it fails, or no value can be certified (too few consecutive valid hits)
+  2  usage error (unknown protocol, a metric a lab test does not measure)
+  3  invalid input (the session, hits CSV, bat or ball has errors; nothing is written)
+""" + ENVIRONMENT_EXIT_CODES
+
+
+@main.command(epilog=REDUCE_EXIT_CODES + """
+
+\b
+Examples:
+  batcert reduce examples/lab/synthetic-scatter.yaml -p ncaa-bbcor
+  batcert reduce examples/lab/synthetic-scatter.yaml -p ncaa-bbcor --decision-rule guarded""")
+@click.argument("session")
+@click.option("--protocol", "-p", "protocol", required=True, shell_complete=_complete("protocol"),
+              help="The protocol whose metric, location rule and limit certify the bat.")
+@click.option("--decision-rule", type=click.Choice(["simple", "guarded"]), default="simple",
+              show_default=True, help="simple: the limit as written (the governing body's); "
+                   "guarded: the value plus its expanded uncertainty must be within the limit.")
+@_output_options("certificate", "Impact engine of the model's prediction drawn beside the "
+                 "measurement.")
+@FIGURES_OPTION
+@_guard
+def reduce(session, protocol, decision_rule, engine, out_dir, formats, no_reports, as_json,
+           figures_dir):
+    """Reduce a lab SESSION's measured hits (a session YAML naming its hits CSV; see
+    docs/lab-reduction.md) to a certified value with its measurement uncertainty, and decide
+    under a declared rule."""
+    from batcert.commands.reduce import run_reduce
+    fmts = _formats(formats)
+    target = _report_dir(out_dir, no_reports, as_json)
+    _check_figures_dir(figures_dir)
+    result = run_reduce(session, protocol, decision_rule, engine)
+    _deliver(result, console.lab_summary, target, fmts, as_json)
+    _figures(result, figures_dir)
+    sys.exit(0 if result.verdict in ("pass", None) and result.value is not None else 1)
+
+
 @main.command("list", epilog=CHECK_EXIT_CODES + """
 
 \b

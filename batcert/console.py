@@ -314,6 +314,22 @@ def sweep_summary(result, paths: Sequence[Any]) -> None:
     _wrote(paths)
 
 
+def lab_summary(result, paths: Sequence[Any]) -> None:
+    """Terminal view of a lab certificate: verdict, sentence, uncertainty budget, scan."""
+    from batcert.reports.lab_view import lab_view
+    view = lab_view(result, charts=False)
+    b = view["badge"]
+    _emit([(_cell_text(b), STYLES.get(getattr(b, "css", ""), "")), (f"  {view['title']}", "")])
+    _emit([(f"  {view['sentence']}", "")])
+    if result.conformance_probability is not None:
+        _emit([(f"  conformance probability {result.conformance_probability:.4f}; decision "
+                f"rule: {result.decision_rule} acceptance", "")])
+    table(view["budget"], "measurement uncertainty")
+    table(view["scan"], "location scan")
+    _warnings(result.warnings)
+    _wrote(paths)
+
+
 def note_out(message: str) -> None:
     """A plain line on stdout (e.g. ``ok  file.yaml (bat)``)."""
     _emit([(message, "")])

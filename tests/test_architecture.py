@@ -37,7 +37,7 @@ ALLOWED = {
     "lab": {"units", "errors", "conventions", "physics", "methods", "specs", "model",
             "results", "__init__"},
     "commands": {"units", "errors", "conventions", "physics", "engines", "specs", "model",
-                 "results", "runner", "analysis", "sweeps", "lab"},
+                 "results", "runner", "analysis", "sweeps", "lab", "__init__"},
     "console": {"units", "reports", "results"},
     "cli": {"__init__", "console", "errors", "commands", "engines", "specs", "units", "reports",
             "runner"},

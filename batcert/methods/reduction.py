@@ -32,8 +32,8 @@ class HitReduction:
     measured_bpf: np.ndarray  # measured_cor / ball_cor (the BPF method), NaN without w2 [-]
 
 
-def reduce_hits(inbound_speed, rebound_speed, impact_location, moi_pivot: float,
-                ball_mass: float, ball_cor_at: Callable[[np.ndarray], np.ndarray],
+def reduce_hits(inbound_speed, rebound_speed, impact_location, moi_pivot, ball_mass,
+                ball_cor_at: Callable[[np.ndarray], np.ndarray],
                 bat_angular_speed_after=None) -> HitReduction:
     """Reduce hits on a pivoted bat at rest.
 
@@ -43,9 +43,9 @@ def reduce_hits(inbound_speed, rebound_speed, impact_location, moi_pivot: float,
         Ball speed before and after impact, magnitudes [m/s].
     impact_location : array_like
         ``r`` [m from the pivot].
-    moi_pivot : float
-        The bat's MOI about the pivot, ``I`` [kg m^2].
-    ball_mass : float
+    moi_pivot : float or array_like
+        The bat's MOI about the pivot, ``I`` [kg m^2] (an array broadcasts: Monte Carlo draws).
+    ball_mass : float or array_like
         ``m`` [kg].
     ball_cor_at : callable
         The ball's rigid-wall COR at an impact speed [m/s] (the ball lot's).

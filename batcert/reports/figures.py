@@ -142,6 +142,10 @@ def figures_of(result) -> list[Figure]:
     if isinstance(result, RunResult):
         from batcert.reports.html import run_figures
         return run_figures(result)
+    from batcert.results.lab import LabResult
+    if isinstance(result, LabResult):
+        from batcert.reports.lab_view import lab_figures
+        return list(lab_figures(result))
     if isinstance(result, ComparisonResult):
         from batcert.reports.compare_view import comparison_figures
         return comparison_figures(result)

@@ -15,6 +15,7 @@ if TYPE_CHECKING:
     from markupsafe import Markup
 
     from batcert.results.compare import ComparisonResult
+    from batcert.results.lab import LabResult
     from batcert.results.league import LeagueResult
     from batcert.results.run import RunResult
     from batcert.results.sweep import SweepResult
@@ -107,3 +108,9 @@ def sweep_html(result: SweepResult) -> str:
     """A sweep or design study as one styled HTML5 page with its figures."""
     from batcert.reports.sweep_view import sweep_view
     return render_template("sweep.html.j2", sweep_view(result), FILTERS)
+
+
+def lab_html(result: LabResult) -> str:
+    """A lab certificate (``batcert reduce``)."""
+    from batcert.reports.lab_view import lab_view
+    return render_template("lab.html.j2", lab_view(result), FILTERS)

@@ -11,6 +11,7 @@ from batcert.units import Display
 
 if TYPE_CHECKING:
     from batcert.results.compare import ComparisonResult
+    from batcert.results.lab import LabResult
     from batcert.results.league import LeagueResult
     from batcert.results.run import RunResult
     from batcert.results.sweep import SweepResult
@@ -65,3 +66,9 @@ def league_markdown(result: LeagueResult) -> str:
 def sweep_markdown(result: SweepResult) -> str:
     from batcert.reports.sweep_view import sweep_view
     return render_template("sweep.md.j2", sweep_view(result, charts=False), FILTERS)
+
+
+def lab_markdown(result: LabResult) -> str:
+    """A lab certificate (``batcert reduce``)."""
+    from batcert.reports.lab_view import lab_view
+    return render_template("lab.md.j2", lab_view(result, charts=False), FILTERS)

@@ -81,10 +81,16 @@ def sweep_stem(result: Any) -> str:
     return _stem(kind, what, Path(result.bat_path).stem)
 
 
+def lab_stem(result: Any) -> str:
+    """``lab--<protocol>--<session file stem>``."""
+    return _stem("lab", result.protocol, Path(result.session_path).stem)
+
+
 def _kind(result: Any) -> ReportKind:
     """The report kind of a result (renderers imported lazily to keep start-up fast)."""
     from batcert.reports import html, markdown
     from batcert.results.compare import ComparisonResult
+    from batcert.results.lab import LabResult
     from batcert.results.league import LeagueResult
     from batcert.results.run import RunResult
     from batcert.results.sweep import SweepResult
@@ -92,7 +98,8 @@ def _kind(result: Any) -> ReportKind:
              ComparisonResult: ReportKind(comparison_stem, markdown.comparison_markdown,
                                           html.comparison_html),
              LeagueResult: ReportKind(league_stem, markdown.league_markdown, html.league_html),
-             SweepResult: ReportKind(sweep_stem, markdown.sweep_markdown, html.sweep_html)}
+             SweepResult: ReportKind(sweep_stem, markdown.sweep_markdown, html.sweep_html),
+             LabResult: ReportKind(lab_stem, markdown.lab_markdown, html.lab_html)}
     return kinds[type(result)]
 
 

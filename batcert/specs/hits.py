@@ -28,8 +28,19 @@ import numpy as np
 from batcert.conventions import DEFAULT_PIVOT
 from batcert.errors import Collector, InputError, Problem
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked, spec_from
-from batcert.specs.schema import Field, Schema, choice, quantity, text
+from batcert.specs.schema import Field, Schema, choice, integer, quantity, section, text
 from batcert.specs.yamlio import load_yaml
+
+UNCERTAINTY_SCHEMA = Schema("uncertainties", (
+    Field("speed", quantity("speed", minimum=0.0), "Standard uncertainty of a measured speed "
+          "(chronograph calibration: common to every hit).", default=0.0),
+    Field("impact_location", quantity("length", minimum=0.0), "Standard uncertainty of an "
+          "impact location.", default=0.0),
+    Field("moi", quantity("moi", minimum=0.0), "Standard uncertainty of the bat's MOI about "
+          "the pivot.", default=0.0),
+    Field("ball_mass", quantity("mass", minimum=0.0), "Standard uncertainty of the ball's "
+          "mass.", default=0.0),
+))
 
 SESSION_SCHEMA = Schema("hit session", (
     Field("name", text(), "Session name shown in reports.", required=True),
@@ -45,6 +56,17 @@ SESSION_SCHEMA = Schema("hit session", (
           "impact_location is measured from.", default="tip"),
     Field("gate_spacing", quantity("length", positive=True), "Distance between the light "
           "gates, for hits given as gate times."),
+    Field("location_step", quantity("length", positive=True), "Hits within half a step of a "
+          "location are one location of the scan (the lab's nominal positions).",
+          default=0.25 * 0.0254),
+    Field("hits_required", integer(minimum=1, maximum=1000), "Consecutive valid hits at the "
+          "certified location whose mean is certified (NCAA BBCOR: 6).", default=6),
+    Field("speed_tolerance", quantity("speed", positive=True), "A hit whose inbound speed is "
+          "further than this from the protocol's speed is invalid.", default=0.44704),
+    Field("hits_per_ball", integer(minimum=1, maximum=1000), "A ball's hits beyond this many "
+          "are invalid (the ball must be replaced)."),
+    Field("uncertainty", section(UNCERTAINTY_SCHEMA), "Standard uncertainties of the "
+          "instruments and of the inputs (GUM, JCGM 100); zero where not given."),
 ))
 
 # column -> (dimension or None, required); a speed pair or a gate-time pair is required
@@ -75,6 +97,11 @@ class SessionSpec:
     hits: str  # CSV path relative to the session file
     location_from: str  # tip | knob | pivot
     gate_spacing: float | None  # [m]
+    location_step: float  # [m]
+    hits_required: int
+    speed_tolerance: float  # [m/s]
+    hits_per_ball: int | None
+    uncertainty: dict | None  # speed [m/s], impact_location [m], moi [kg m^2], ball_mass [kg]
 
     @property
     def path(self) -> str:

@@ -1,0 +1,91 @@
+"""``batcert reduce``: a lab session's measured hits reduced to a certified value with its
+measurement uncertainty and a verdict under a declared decision rule (docs/lab-reduction.md)."""
+
+from __future__ import annotations
+
+import datetime as _dt
+import math
+
+import numpy as np
+
+from batcert import __version__
+from batcert.commands.inputs import load_protocol_any
+from batcert.lab.certify import DECISION_RULES, MC_DRAWS, certify, decide
+from batcert.lab.session import load_lab_session
+from batcert.results.lab import LabHit, LabLocation, LabResult
+from batcert.specs.resolve import display_path
+
+
+def _none(x: float) -> float | None:
+    return None if not np.isfinite(x) else float(x)
+
+
+def _model(session, protocol, ball, engine: str, location_from_tip: float | None,
+           value: float | None) -> dict:
+    """The model's prediction of the same test on the same bat and ball: the protocol metric
+    against the distance from the tip (the first condition's location sweep), its value at the
+    certified location and the measured value's difference from it."""
+    from batcert.engines import get_engine
+    from batcert.runner.runner import run_protocol
+    run = run_protocol(session.built, protocol, ball, get_engine(engine))
+    c = run.conditions[0]
+    tip = session.built.model.length - protocol.pivot
+    x = [tip - r for r in c.sweep.impact_location]
+    order = np.argsort(x)
+    xs, ys = np.asarray(x)[order], np.asarray(c.sweep.metric)[order]
+    at = None if location_from_tip is None else float(np.interp(location_from_tip, xs, ys))
+    return {"engine": engine, "from_tip": xs.tolist(), "metric": ys.tolist(),
+            "value": run.value, "location_from_tip": tip - c.impact_location,
+            "at_certified_location": at,
+            "difference": None if at is None or value is None else value - at,
+            "barrel_calibrated": bool(run.barrel.calibrated) if run.barrel else None}
+
+
+def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
+               engine: str = "flexible") -> LabResult:
+    """Load, reduce, certify and decide; and the model's prediction of the same test."""
+    session = load_lab_session(session_path)
+    pin = load_protocol_any(protocol)
+    p = pin.protocol
+    limit = p.limit.max + p.limit.tolerance if p.limit else None
+    red, c = certify(session, p, limit)
+    margin, verdict = decide(c.value, limit, c.expanded, decision_rule)
+    h = session.hits
+    tip = session.built.model.length - session.spec.pivot
+    used = set(c.used)
+    hits = [LabHit(float(h.hit[i]), h.ball[i], h.line[i], float(h.inbound_speed[i]),
+                   float(h.rebound_speed[i]), float(session.impact_location[i]),
+                   float(tip - session.impact_location[i]),
+                   float(red.collision_efficiency[i]), float(red.recoil_factor[i]),
+                   float(red.bbcor[i]), float(red.besr[i]), float(red.bpf[i]),
+                   float(red.bat_angular_speed_after[i]), _none(red.measured_cor[i]),
+                   not c.reasons[i], list(c.reasons[i]), i in used)
+            for i in range(len(h.line))]
+    scan = [LabLocation(loc.from_tip, loc.position, [float(h.hit[i]) for i in loc.hits],
+                        loc.n_valid, loc.mean, loc.std) for loc in c.scan]
+    spec, bat = session.spec, session.built.spec
+    inputs = [{"role": "session", "name": spec.name, "path": display_path(spec.path),
+               "sha256": spec.source.sha256},
+              {"role": "hits", "name": spec.hits, "path": display_path(h.path), "sha256": h.sha256},
+              {"role": "bat", "name": bat.name, "path": display_path(bat.path), "sha256": bat.sha256},
+              {"role": "ball", "name": session.ball.name, "path": display_path(session.ball.path),
+               "sha256": session.ball.sha256},
+              {"role": "protocol", "name": p.id, "path": display_path(p.path), "sha256": p.sha256}]
+    return LabResult(
+        session=spec.name, session_path=display_path(spec.path), bat=bat.name, protocol=p.id,
+        protocol_title=p.title, metric=p.metric, statement="measured",
+        limit=p.limit.max if p.limit else None, tolerance=p.limit.tolerance if p.limit else 0.0,
+        decision_rule=decision_rule, decision_rule_text=DECISION_RULES[decision_rule],
+        value=c.value,
+        location_from_tip=c.scan[c.location].from_tip if c.location is not None else None,
+        hits_used=[float(h.hit[i]) for i in c.used], u_a=c.u_a, u_b=c.u_b, u_c=c.u_c,
+        dof=c.dof if math.isfinite(c.dof) else None, coverage_factor=c.coverage_factor,
+        expanded=c.expanded, mc_std=c.mc_std,
+        mc_interval=list(c.mc_interval) if c.mc_interval else None, mc_draws=MC_DRAWS,
+        conformance_probability=c.conformance, margin=margin, verdict=verdict,
+        moi_pivot=session.moi_pivot, moi_source=session.moi_source,
+        ball_mass=session.ball.model.mass, pivot=spec.pivot, scan=scan, hits=hits,
+        warnings=c.warnings, inputs=inputs, batcert_version=__version__,
+        created=_dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        model=_model(session, p, pin.ball, engine,
+                     c.scan[c.location].from_tip if c.location is not None else None, c.value))

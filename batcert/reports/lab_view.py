@@ -1,0 +1,128 @@
+"""The lab certificate (``batcert reduce``): everything its Markdown and HTML show, formatted
+once: the certified value beside its limit with its interval, the uncertainty budget, the
+decision rule, the location scan and every hit with its validity."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from batcert.reports import format as fmt
+from batcert.reports.compare_view import VERDICT_BADGES, badge
+from batcert.reports.figure import LineFigure
+from batcert.reports.svg import Point, Series, VLine
+from batcert.reports.table import Badge, Table
+from batcert.results.lab import LabResult
+
+INCH = 0.0254
+
+
+def _v(x: float | None, digits: int = 4) -> str:
+    return fmt.DASH if x is None else f"{x:.{digits}f}"
+
+
+def lab_figures(result: LabResult) -> list[LineFigure]:
+    """The metric of every hit against its distance from the tip, the location means and the
+    certified value with its 95 % interval."""
+    m = result.metric.replace("-", "_") if result.metric != "collision-efficiency" \
+        else "collision_efficiency"
+    valid = [h for h in result.hits if h.valid]
+    invalid = [h for h in result.hits if not h.valid]
+    series = [Series("location mean (valid hits)",
+                     [loc.from_tip / INCH for loc in result.scan if loc.mean is not None],
+                     [loc.mean for loc in result.scan if loc.mean is not None])]
+    if result.model:
+        series.append(Series(f"model ({result.model['engine']} engine)",
+                             [x / INCH for x in result.model["from_tip"]],
+                             result.model["metric"]))
+    points = [Point(h.from_tip / INCH, getattr(h, m), 0) for h in valid]
+    points += [Point(h.from_tip / INCH, getattr(h, m), 1, "invalid") for h in invalid]
+    hlines = []
+    if result.limit is not None:
+        hlines.append((result.limit + result.tolerance, f"limit {result.limit:g}"))
+    if result.value is not None:
+        hlines += [(result.value + result.expanded, "certified + U"),
+                   (result.value - result.expanded, "certified - U")]
+    vlines = [] if result.location_from_tip is None else [
+        VLine(result.location_from_tip / INCH, "certified location")]
+    word = fmt.metric_word(result.metric)
+    return [LineFigure("hits", f"Measured {word} of every hit against its location", "impact "
+                       "location from the tip [in]", f"{word} [-]", series, points=points,
+                       point_legend="hit", hlines=hlines, vlines=vlines,
+                       caption="Each circle is a hit (invalid hits marked); the line joins the "
+                       "locations' means; the dashed lines are the limit and the certified "
+                       "value's 95 % interval.")]
+
+
+def lab_view(result: LabResult, charts: bool = True) -> dict[str, Any]:
+    from markupsafe import Markup
+
+    from batcert.reports.figure import svg_of
+    verdict = badge(VERDICT_BADGES, result.verdict) if result.verdict else \
+        Badge("NO VERDICT", "warn")
+    word = fmt.metric_word(result.metric)
+    if result.value is None:
+        sentence = "No value can be certified: " + "; ".join(result.warnings)
+    else:
+        sentence = (f"Measured {word} {result.value:.4f} \u00b1 {result.expanded:.4f} (expanded "
+                    f"uncertainty, 95 % coverage, k = {result.coverage_factor:.2f})"
+                    + (f" against the limit {result.limit:g}" if result.limit is not None else "")
+                    + (f": {result.verdict.upper()} under {result.decision_rule} acceptance"
+                       if result.verdict else "") + ".")
+    facts = [
+        ("Session", f"{result.session} ({result.session_path})"), ("Bat", result.bat),
+        ("Protocol", f"{result.protocol}: {result.protocol_title}"),
+        ("Values", "measured (reduced from the hits), not computed by the model"),
+        ("Decision rule", result.decision_rule_text),
+        ("Certified location", fmt.DASH if result.location_from_tip is None else
+         f"{result.location_from_tip / INCH:.2f} in from the tip"),
+        ("Hits averaged", ", ".join(f"{h:g}" for h in result.hits_used) or fmt.DASH),
+        ("Conformance probability", fmt.DASH if result.conformance_probability is None else
+         f"{result.conformance_probability:.4f} (JCGM 106: the probability that the true value "
+         "is within the limit, Monte Carlo)"),
+        ("Margin", fmt.DASH if result.margin is None else f"{result.margin:+.4f} "
+         f"({result.decision_rule} acceptance)"),
+        ("Model (same bat, ball and test)", fmt.DASH if not result.model else
+         f"{result.model['engine']} engine: {_v(result.model['at_certified_location'])} at the "
+         f"certified location, measured minus model {_v(result.model['difference'])}; the "
+         f"model's own result {_v(result.model['value'])} at "
+         f"{result.model['location_from_tip'] / INCH:.2f} in from the tip"
+         + ("" if result.model.get("barrel_calibrated") is not False else
+            " (the model's barrel is not calibrated by a measurement)")),
+        ("Bat MOI about the pivot", f"{result.moi_pivot:.6f} kg m\u00b2 ({result.moi_source}); "
+         f"pivot {result.pivot / INCH:.2f} in from the knob"),
+        ("Ball mass", f"{result.ball_mass * 1000:.2f} g"),
+        ("Date", fmt.created(result.created)), ("batcert version", result.batcert_version)]
+    budget = Table(["component", "standard uncertainty", "degrees of freedom"],
+                   [["type A: scatter of the hits averaged", _v(result.u_a, 5),
+                     f"{len(result.hits_used) - 1}"]]
+                   + [[f"type B: {k}", _v(v, 5), "\u221e"] for k, v in result.u_b.items()]
+                   + [["combined u_c", _v(result.u_c, 5),
+                       "\u221e" if result.dof is None else f"{result.dof:.1f}"],
+                      [f"expanded U = {result.coverage_factor:.3f} u_c (95 %)",
+                       _v(result.expanded, 5), ""],
+                      [f"Monte Carlo (JCGM 101, {result.mc_draws} draws): standard deviation",
+                       _v(result.mc_std, 5), ""],
+                      ["Monte Carlo 95 % interval", fmt.DASH if not result.mc_interval else
+                       f"{result.mc_interval[0]:.4f} to {result.mc_interval[1]:.4f}", ""]],
+                   [False, True, True])
+    scan = Table(["from tip [in]", "hits", "valid", f"mean {word}", "std"],
+                 [[f"{loc.from_tip / INCH:.2f}", ", ".join(f"{h:g}" for h in loc.hits),
+                   str(loc.valid_hits), _v(loc.mean), _v(loc.std)] for loc in result.scan],
+                 [True, False, True, True, True])
+    hits = Table(["hit", "ball", "line", "v_i [m/s]", "v_r [m/s]", "from tip [in]", "e_A", "k",
+                  "BBCOR", "BESR", "BPF", "valid", "used", "reasons"],
+                 [[f"{h.hit:g}", h.ball, str(h.line), f"{h.inbound_speed:.2f}",
+                   f"{h.rebound_speed:.2f}", f"{h.from_tip / INCH:.3f}",
+                   _v(h.collision_efficiency), _v(h.recoil_factor), _v(h.bbcor), _v(h.besr),
+                   _v(h.bpf), "yes" if h.valid else "NO", "yes" if h.used else "",
+                   "; ".join(h.reasons)] for h in result.hits],
+                 [True, False, True, True, True, True, True, True, True, True, True, False,
+                  False, False])
+    figs = lab_figures(result)
+    return {"result": result, "title": f"Lab certificate: {result.bat}, {result.protocol}",
+            "page_title": f"Lab certificate: {result.bat} \u2014 batcert", "badge": verdict,
+            "sentence": sentence, "facts": facts, "budget": budget, "scan": scan,
+            "hits": hits, "warnings": result.warnings, "inputs": result.inputs,
+            "figures": [{"svg": Markup(svg_of(f)) if charts else "", "caption": f.caption,
+                         "title": f.title} for f in figs],
+            "date": fmt.created(result.created)}

@@ -1,0 +1,84 @@
+"""Results of a lab reduction (``batcert reduce``): measured hits, the location scan, the
+certified value with its measurement uncertainty and the decision. SI units, metric values
+dimensionless."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from batcert.results.serialise import Serialisable
+
+
+@dataclass
+class LabHit:
+    hit: float  # the hit's number as written
+    ball: str
+    line: int  # its line in the hits CSV
+    inbound_speed: float  # [m/s]
+    rebound_speed: float  # [m/s]
+    impact_location: float  # [m from pivot]
+    from_tip: float  # [m]
+    collision_efficiency: float  # e_A [-]
+    recoil_factor: float  # k [-]
+    bbcor: float  # [-]
+    besr: float  # [-]
+    bpf: float  # [-]
+    bat_angular_speed_after: float  # from momentum [rad/s]
+    measured_cor: float | None  # from a measured bat speed (BPF method) [-]
+    valid: bool  # passes every validity check
+    reasons: list[str]  # why not, when not
+    used: bool  # one of the hits averaged into the certified value
+
+
+@dataclass
+class LabLocation:
+    from_tip: float  # [m], the mean of its hits
+    impact_location: float  # [m from pivot]
+    hits: list[float]  # hit numbers
+    valid_hits: int
+    mean: float | None  # mean metric of the valid hits
+    std: float | None  # sample standard deviation
+
+
+@dataclass
+class LabResult(Serialisable):
+    session: str
+    session_path: str
+    bat: str
+    protocol: str
+    protocol_title: str
+    metric: str
+    statement: str  # "measured": the values come from measured hits, not from the model
+    limit: float | None
+    tolerance: float
+    decision_rule: str  # simple | guarded
+    decision_rule_text: str
+    value: float | None  # the certified value (mean of the hits used)
+    location_from_tip: float | None  # the certified location [m]
+    hits_used: list[float]
+    u_a: float  # type A standard uncertainty [metric]
+    u_b: dict[str, float]  # type B contributions [metric]
+    u_c: float  # combined standard uncertainty
+    dof: float | None  # effective degrees of freedom (None: infinite)
+    coverage_factor: float
+    expanded: float  # U at 95 % coverage
+    mc_std: float | None  # Monte Carlo (JCGM 101) standard uncertainty
+    mc_interval: list[float] | None  # 95 % probabilistically symmetric coverage interval
+    mc_draws: int
+    conformance_probability: float | None  # P(true value <= limit + tolerance), JCGM 106
+    margin: float | None  # under the decision rule
+    verdict: str | None  # pass | fail | None (no value or no limit)
+    moi_pivot: float  # the bat's MOI about the pivot used [kg m^2]
+    moi_source: str  # measured | model
+    ball_mass: float  # [kg]
+    pivot: float  # [m from knob]
+    scan: list[LabLocation]
+    hits: list[LabHit]
+    warnings: list[str]
+    inputs: list[dict[str, str]]
+    batcert_version: str
+    created: str
+    # the model's prediction of the same test (engine, from_tip [m], metric, value,
+    # location_from_tip [m], at_certified_location, difference = measured - model)
+    model: dict[str, Any] = field(default_factory=dict)

@@ -657,12 +657,16 @@ Examples:
 @click.option("--decision-rule", type=click.Choice(["simple", "guarded"]), default="simple",
               show_default=True, help="simple: the limit as written (the governing body's); "
                    "guarded: the value plus its expanded uncertainty must be within the limit.")
+@click.option("--write-calibration", "calibrated_bat", default=None,
+              type=click.Path(dir_okay=False, path_type=Path),
+              help="Write a copy of the bat file with the barrel calibrated from the hits "
+                   "(measured.hoop_frequency) to this path.")
 @_output_options("certificate", "Impact engine of the model's prediction drawn beside the "
                  "measurement.")
 @FIGURES_OPTION
 @_guard
-def reduce(session, protocol, decision_rule, engine, out_dir, formats, no_reports, as_json,
-           figures_dir):
+def reduce(session, protocol, decision_rule, calibrated_bat, engine, out_dir, formats,
+           no_reports, as_json, figures_dir):
     """Reduce a lab SESSION's measured hits (a session YAML naming its hits CSV; see
     docs/lab-reduction.md) to a certified value with its measurement uncertainty, and decide
     under a declared rule."""
@@ -672,8 +676,25 @@ def reduce(session, protocol, decision_rule, engine, out_dir, formats, no_report
     _check_figures_dir(figures_dir)
     result = run_reduce(session, protocol, decision_rule, engine)
     _deliver(result, console.lab_summary, target, fmts, as_json)
+    if calibrated_bat is not None:
+        _write_calibration(result, session, calibrated_bat)
     _figures(result, figures_dir)
     sys.exit(0 if result.verdict in ("pass", None) and result.value is not None else 1)
+
+
+def _write_calibration(result, session: str, target: Path) -> None:
+    """The bat file with the fitted barrel (the softest fit when there are several), written
+    atomically and read back to check it is a valid bat file."""
+    from batcert.commands.reduce import calibrated_bat_text
+    from batcert.errors import UsageProblem
+    from batcert.reports.write import atomic_write_text, check_output_dir
+    try:
+        text = calibrated_bat_text(result, session)
+    except ValueError as exc:
+        raise UsageProblem(f"--write-calibration: {exc}") from None
+    check_output_dir(target.parent if str(target.parent) else Path("."))
+    atomic_write_text(target, text)
+    console.note(f"wrote the calibrated bat to {target}")
 
 
 @main.command("list", epilog=CHECK_EXIT_CODES + """

@@ -41,6 +41,19 @@ def _model(session, protocol, ball, engine: str, location_from_tip: float | None
             "barrel_calibrated": bool(run.barrel.calibrated) if run.barrel else None}
 
 
+def _barrel_fits(session, protocol, ball, engine: str, c) -> list[dict[str, float]]:
+    """The barrel calibrated from the hits (hollow bats, flexible engine, a certified value)."""
+    from dataclasses import asdict
+
+    from batcert.engines import get_engine
+    from batcert.lab.calibrate import fit_barrel
+    if c.value is None or engine != "flexible" or c.location is None:
+        return []
+    fits = fit_barrel(session, protocol, ball, get_engine(engine), c.scan[c.location].position,
+                      c.value, c.u_c)
+    return [asdict(f) for f in fits]
+
+
 def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
                engine: str = "flexible") -> LabResult:
     """Load, reduce, certify and decide; and the model's prediction of the same test."""
@@ -87,5 +100,35 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
         ball_mass=session.ball.model.mass, pivot=spec.pivot, scan=scan, hits=hits,
         warnings=c.warnings, inputs=inputs, batcert_version=__version__,
         created=_dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        lab={k: v for k, v in (spec.lab or {}).items() if v is not None},
+        barrel_fits=_barrel_fits(session, p, pin.ball, engine, c),
         model=_model(session, p, pin.ball, engine,
                      c.scan[c.location].from_tip if c.location is not None else None, c.value))
+
+
+def calibrated_bat_text(result: LabResult, session_path: str) -> str:
+    """The session's bat file with ``measured.hoop_frequency`` from the first barrel fit;
+    ``ValueError`` when there is none or the bat file has no measured block."""
+    from pathlib import Path
+
+    from batcert.lab.calibrate import with_hoop_frequency
+    from batcert.specs.bat import load_bat
+    if not result.barrel_fits:
+        raise ValueError("no barrel calibration: the bat is solid, the engine is not flexible, "
+                         "nothing was certified, or no barrel stiffness in x0.25-x4 meets the "
+                         "measurement")
+    from batcert.specs.hits import load_session
+    from batcert.specs.resolve import resolve
+    spec = load_session(session_path)
+    path = resolve("bat", spec.bat, relative_to=Path(spec.path))
+    fit = result.barrel_fits[0]
+    text = with_hoop_frequency(Path(path).read_text(encoding="utf-8"), fit["hoop_frequency"],
+                               f"fitted by batcert reduce from {result.session} "
+                               f"({result.created}): barrel stiffness x{fit['scale']:.3f} "
+                               f"+- {fit['u_scale']:.3f}")
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:  # the result must be a valid bat file
+        probe = Path(tmp) / "bat.yaml"
+        probe.write_text(text, encoding="utf-8")
+        load_bat(probe)
+    return text

@@ -68,7 +68,13 @@ def lab_view(result: LabResult, charts: bool = True) -> dict[str, Any]:
                     + (f" against the limit {result.limit:g}" if result.limit is not None else "")
                     + (f": {result.verdict.upper()} under {result.decision_rule} acceptance"
                        if result.verdict else "") + ".")
-    facts = [
+    lab_words = {"laboratory": "Laboratory", "accreditation": "Accreditation",
+                 "certificate_number": "Certificate number", "customer": "Customer",
+                 "bat_serial": "Bat serial number", "operator": "Operator",
+                 "test_date": "Test date", "issue_date": "Issue date", "signatures": "Approved by"}
+    lab = [(word, "; ".join(result.lab[k]) if isinstance(result.lab[k], list) else
+            str(result.lab[k])) for k, word in lab_words.items() if k in result.lab]
+    facts = lab + [
         ("Session", f"{result.session} ({result.session_path})"), ("Bat", result.bat),
         ("Protocol", f"{result.protocol}: {result.protocol_title}"),
         ("Values", "measured (reduced from the hits), not computed by the model"),
@@ -88,6 +94,12 @@ def lab_view(result: LabResult, charts: bool = True) -> dict[str, Any]:
          f"{result.model['location_from_tip'] / INCH:.2f} in from the tip"
          + ("" if result.model.get("barrel_calibrated") is not False else
             " (the model's barrel is not calibrated by a measurement)")),
+        ("Barrel calibrated from the hits", fmt.DASH if not result.barrel_fits else
+         "; ".join(f"stiffness x{f['scale']:.3f} \u00b1 {f['u_scale']:.3f} (equivalent hoop "
+                   f"frequency {f['hoop_frequency']:.0f} \u00b1 {f['u_hoop_frequency']:.0f} Hz)"
+                   for f in result.barrel_fits)
+         + ": the model then meets the measured value at the certified location (one point, "
+         "not the whole scan); --write-calibration writes it into a copy of the bat file"),
         ("Bat MOI about the pivot", f"{result.moi_pivot:.6f} kg m\u00b2 ({result.moi_source}); "
          f"pivot {result.pivot / INCH:.2f} in from the knob"),
         ("Ball mass", f"{result.ball_mass * 1000:.2f} g"),
@@ -125,4 +137,7 @@ def lab_view(result: LabResult, charts: bool = True) -> dict[str, Any]:
             "hits": hits, "warnings": result.warnings, "inputs": result.inputs,
             "figures": [{"svg": Markup(svg_of(f)) if charts else "", "caption": f.caption,
                          "title": f.title} for f in figs],
-            "date": fmt.created(result.created)}
+            "date": fmt.created(result.created),
+            "print_header": " \u2014 ".join(x for x in (
+                result.lab.get("certificate_number"), result.bat, result.protocol,
+                (result.verdict or "no verdict").upper()) if x)}

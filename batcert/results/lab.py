@@ -79,6 +79,10 @@ class LabResult(Serialisable):
     inputs: list[dict[str, str]]
     batcert_version: str
     created: str
+    lab: dict[str, Any] = field(default_factory=dict)  # the session's lab: block
+    # hollow bats: every barrel stiffness scale at which the model meets the measurement at the
+    # certified location (scale, u_scale, hoop_frequency [Hz], u_hoop_frequency [Hz], slope)
+    barrel_fits: list[dict[str, float]] = field(default_factory=list)
     # the model's prediction of the same test (engine, from_tip [m], metric, value,
     # location_from_tip [m], at_certified_location, difference = measured - model)
     model: dict[str, Any] = field(default_factory=dict)

@@ -28,7 +28,16 @@ import numpy as np
 from batcert.conventions import DEFAULT_PIVOT
 from batcert.errors import Collector, InputError, Problem
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked, spec_from
-from batcert.specs.schema import Field, Schema, choice, integer, quantity, section, text
+from batcert.specs.schema import (
+    Field,
+    Schema,
+    choice,
+    integer,
+    list_of,
+    quantity,
+    section,
+    text,
+)
 from batcert.specs.yamlio import load_yaml
 
 UNCERTAINTY_SCHEMA = Schema("uncertainties", (
@@ -40,6 +49,19 @@ UNCERTAINTY_SCHEMA = Schema("uncertainties", (
           "the pivot.", default=0.0),
     Field("ball_mass", quantity("mass", minimum=0.0), "Standard uncertainty of the ball's "
           "mass.", default=0.0),
+))
+
+LAB_SCHEMA = Schema("laboratory", (
+    Field("laboratory", text(), "The testing laboratory's name and address."),
+    Field("accreditation", text(), "Accreditation body and number (e.g. ISO/IEC 17025)."),
+    Field("operator", text(), "Who ran the test."),
+    Field("customer", text(), "For whom."),
+    Field("bat_serial", text(), "The tested bat's serial number."),
+    Field("test_date", text(), "When the hits were measured."),
+    Field("issue_date", text(), "When the certificate is issued."),
+    Field("certificate_number", text(), "The certificate's number."),
+    Field("signatures", list_of(text(), min_items=1, describe="list of names and roles"),
+          "Who approves the certificate (name, role)."),
 ))
 
 SESSION_SCHEMA = Schema("hit session", (
@@ -67,6 +89,8 @@ SESSION_SCHEMA = Schema("hit session", (
           "are invalid (the ball must be replaced)."),
     Field("uncertainty", section(UNCERTAINTY_SCHEMA), "Standard uncertainties of the "
           "instruments and of the inputs (GUM, JCGM 100); zero where not given."),
+    Field("lab", section(LAB_SCHEMA), "The laboratory, operator, customer, bat serial, dates and "
+          "signatures printed on the certificate."),
 ))
 
 # column -> (dimension or None, required); a speed pair or a gate-time pair is required
@@ -102,6 +126,7 @@ class SessionSpec:
     speed_tolerance: float  # [m/s]
     hits_per_ball: int | None
     uncertainty: dict | None  # speed [m/s], impact_location [m], moi [kg m^2], ball_mass [kg]
+    lab: dict | None  # laboratory, accreditation, operator, ... (text), signatures (list)
 
     @property
     def path(self) -> str:

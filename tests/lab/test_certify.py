@@ -149,6 +149,9 @@ def test_reduce_cli(tmp_path):
     assert sorted(p.suffix for p in out.iterdir()) == [".html", ".json", ".md"]
     md = next(out.glob("*.md")).read_text(encoding="utf-8")
     assert "Measured BBCOR 0.4933" in md and "simple acceptance" in md
+    assert "| Bat serial number | AL34-0001 |" in md  # the session's lab: block
+    html = next(out.glob("*.html")).read_text(encoding="utf-8")
+    assert 'counter(page) " of " counter(pages)' in html and "EX\\2d 2026\\2d 001" in html
     res = CliRunner().invoke(main, ["reduce", str(LAB / "synthetic-scatter.yaml"), "-p",
                                     "stationary-ball", "--no-reports"])
     assert res.exit_code == 2 and "has no stationary-bat condition" in res.output

@@ -104,8 +104,11 @@ def same_file(a: Path, b: Path) -> bool:
 
 
 def detect_kind(path: str) -> str:
-    """Guess a spec file's kind from its keys (bat, ball, protocol, league, study)."""
+    """Guess a spec file's kind from its keys (bat, ball, protocol, league, study, lab
+    session)."""
     data = load_yaml(path)
+    if "hits" in data:
+        return "session"
     if "conditions" in data or "metric" in data:
         return "protocol"
     if "rules" in data:

@@ -22,7 +22,14 @@ _LOADERS = {
     "league": lambda path: league_protocols(load_league(path)),
     "study": lambda path: _study_fits(load_study(path)),
     "bat": lambda path: build_bat(load_bat(path)),
+    "session": lambda path: _session(path),
 }
+
+
+def _session(path) -> None:
+    """A lab session loads with its bat, ball and hits (every problem of the hits CSV too)."""
+    from batcert.lab.session import load_lab_session
+    load_lab_session(path)
 
 
 def _study_fits(spec) -> None:

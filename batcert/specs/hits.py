@@ -198,6 +198,7 @@ def load_hits(path: str | Path, location_from: str = "tip",
     header = next(csv.reader([head_raw]))
     head_cols = _cell_columns(head_raw)
     columns: dict[str, tuple[int, float | None]] = {}  # name -> (index, SI factor)
+    named: set[str] = set()  # known columns in the header, also those with a problem
     for j, cell in enumerate(header):
         m = _HEADER.match(cell)
         if not m or m.group(1) not in COLUMNS:
@@ -209,6 +210,7 @@ def load_hits(path: str | Path, location_from: str = "tip",
                        f"{', '.join(COLUMNS)}){hint}", column=head_cols[j])
             continue
         name, unit = m.group(1), m.group(2)
+        named.add(name)
         if name in columns:
             errors.add(head_line, name, "the column appears twice", column=head_cols[j])
             continue
@@ -230,11 +232,12 @@ def load_hits(path: str | Path, location_from: str = "tip",
             factor = _unit_factor(name, unit, dimension, head_line, head_cols[j], errors)
         columns[name] = (j, factor)
     for name, (_, required) in COLUMNS.items():
-        if required and name not in columns:
+        if required and name not in named:
             errors.add(head_line, name, f"the column {name!r} is missing")
     speeds = {"inbound_speed", "rebound_speed"} <= set(columns)
     gates = {"inbound_gate_time", "rebound_gate_time"} <= set(columns)
-    if not speeds and not gates:
+    pairs = ({"inbound_speed", "rebound_speed"}, {"inbound_gate_time", "rebound_gate_time"})
+    if not any(pair <= named for pair in pairs):
         errors.add(head_line, "inbound_speed", "give the ball's speeds (inbound_speed and "
                    "rebound_speed) or its gate times (inbound_gate_time and rebound_gate_time)")
     if gates and not speeds and gate_spacing is None:

@@ -3,6 +3,8 @@ column and field; units from the header; gate times."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -64,3 +66,26 @@ def test_a_negative_rebound_and_an_empty_file(tmp_path):
         load_hits(write(tmp_path, f"{HEAD}\n1,B1,136,-15,6,yes,\n"))
     with pytest.raises(InputError, match="no hits"):
         load_hits(write(tmp_path, f"{HEAD}\n"))
+
+
+def test_a_column_with_a_problem_is_reported_once(tmp_path):
+    """A speed column without its unit is one problem, not also a missing speed pair."""
+    text = "hit,ball,inbound_speed [m/s],rebound_speed,impact_location [in from tip]\n1,B1,60,15,6\n"
+    with pytest.raises(InputError) as err:
+        load_hits(write(tmp_path, text))
+    assert [(p.line, p.field) for p in err.value.problems] == [(1, "rebound_speed")]
+
+
+def test_validate_checks_a_session_and_its_hits(tmp_path):
+    from click.testing import CliRunner
+
+    from batcert.cli import main
+    lab = Path(__file__).resolve().parents[2] / "examples" / "lab"
+    ok = CliRunner().invoke(main, ["validate", str(lab / "synthetic-scatter.yaml")])
+    assert ok.exit_code == 0 and "(session)" in ok.output
+    write(tmp_path, f"{HEAD}\n1,B1,136,x,6,yes,\n")
+    session = (lab / "synthetic-scatter.yaml").read_text(encoding="utf-8").replace(
+        "hits: synthetic-scatter.csv", "hits: hits.csv")
+    (tmp_path / "s.yaml").write_text(session, encoding="utf-8")
+    bad = CliRunner().invoke(main, ["validate", str(tmp_path / "s.yaml")])
+    assert bad.exit_code == 3 and "hits.csv:2: rebound_speed: expected a number" in bad.output

@@ -40,8 +40,8 @@ def lab_figures(result: LabResult) -> list[LineFigure]:
     if result.limit is not None:
         hlines.append((result.limit + result.tolerance, f"limit {result.limit:g}"))
     if result.value is not None:
-        hlines += [(result.value + result.expanded, "certified + U"),
-                   (result.value - result.expanded, "certified - U")]
+        hlines += [(result.value + result.expanded, ""),  # unlabelled: the caption says
+                   (result.value - result.expanded, "")]  # (a label would sit on the limit's)
     vlines = [] if result.location_from_tip is None else [
         VLine(result.location_from_tip / INCH, "certified location")]
     word = fmt.metric_word(result.metric)
@@ -49,8 +49,9 @@ def lab_figures(result: LabResult) -> list[LineFigure]:
                        "location from the tip [in]", f"{word} [-]", series, points=points,
                        point_legend="hit", hlines=hlines, vlines=vlines,
                        caption="Each circle is a hit (invalid hits marked); the line joins the "
-                       "locations' means; the dashed lines are the limit and the certified "
-                       "value's 95 % interval.")]
+                       "locations' means; the labelled dashed line is the limit, the two "
+                       "unlabelled ones the certified value's 95 % interval (value \u00b1 U); "
+                       "the other line is the model's prediction of the same test.")]
 
 
 def lab_view(result: LabResult, charts: bool = True) -> dict[str, Any]:

@@ -128,7 +128,11 @@ def _check_spelling(value: str, unit_text: str, ureg, example: str) -> None:
     "36.9 inchs" would silently be 36.9 in. A word must be a unit's name, symbol or alias, or
     its regular English plural ("inches", "meters", "grams")."""
     for word in re.findall(r"[A-Za-z_]+", unit_text):
-        name = ureg.get_name(word)
+        try:
+            name = ureg.get_name(word)
+        except Exception:  # a word pint's parser passed but cannot name ("per"): not a unit
+            raise UnitError(f"cannot read {value!r}: unknown unit {word!r} "
+                            f"(e.g. '{example}')") from None
         unit = ureg._units.get(name)
         spelled = {name, ureg.get_symbol(word), *(unit.aliases if unit is not None else ())}
         plurals = {w + ("es" if w.endswith(("s", "sh", "ch", "x", "z")) else "s")

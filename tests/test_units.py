@@ -85,3 +85,13 @@ def test_fast_units_agree_with_pint():
         for unit, factor in units.items():
             expected = ureg.Quantity(1.0, ureg.parse_units(unit)).to(si).magnitude
             assert factor == pytest.approx(expected, rel=1e-12), (dimension, unit)
+
+
+def test_a_word_pint_parses_but_cannot_name_is_an_unknown_unit():
+    """pint's parser passes "per" ("3 furlongs per fortnight"), then cannot name it: a clear
+    UnitError, not pint's UndefinedUnitError (found by the robustness corpus's hits files)."""
+    import pytest
+
+    from batcert.units import UnitError, parse_quantity
+    with pytest.raises(UnitError, match="unknown unit 'per'"):
+        parse_quantity("3 furlongs per fortnight", "speed")

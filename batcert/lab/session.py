@@ -48,7 +48,20 @@ def load_lab_session(path: str | Path) -> LabSession:
     r = {"tip": length - spec.pivot - hits.impact_location,
          "knob": hits.impact_location - spec.pivot,
          "pivot": hits.impact_location}[spec.location_from]
+    _check_on_bat(hits, r, length - spec.pivot, spec.location_from)
     return LabSession(spec, built, ball, hits, float(moi), source, r)
+
+
+def _check_on_bat(hits: Hits, r: np.ndarray, tip: float, origin: str) -> None:
+    """Every impact lies between the pivot (with the runner's clearance) and the tip."""
+    from batcert.errors import Collector
+    from batcert.model.mass import CLEARANCE
+    errors = Collector(hits.path)
+    for i in np.flatnonzero(~((r >= CLEARANCE) & (r <= tip))):
+        errors.add(hits.line[i], "impact_location", f"hit {hits.hit[i]:g} lies "
+                   f"{hits.impact_location[i] * 100:.1f} cm from the {origin}: not between the "
+                   f"pivot and the tip of this bat ({tip * 100:.1f} cm from the pivot)")
+    errors.raise_if_any()
 
 
 def reduce_session(session: LabSession) -> HitReduction:

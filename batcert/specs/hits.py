@@ -39,6 +39,7 @@ from batcert.specs.schema import (
     text,
 )
 from batcert.specs.yamlio import load_yaml
+from batcert.units import PLAUSIBLE
 
 UNCERTAINTY_SCHEMA = Schema("uncertainties", (
     Field("speed", quantity("speed", minimum=0.0), "Standard uncertainty of a measured speed "
@@ -270,7 +271,15 @@ def load_hits(path: str | Path, location_from: str = "tip",
             if not np.isfinite(value):
                 errors.add(line_no, name, f"expected a finite number, got {text_!r}",
                            column=starts[j])
-            return value * (factor if factor is not None else 1.0)
+                return float("nan")
+            si = value * (factor if factor is not None else 1.0)
+            dimension = COLUMNS[name][0]
+            if dimension in PLAUSIBLE and abs(si) > PLAUSIBLE[dimension]:
+                errors.add(line_no, name, f"{text_} is beyond any plausible "
+                           f"{dimension.replace('_', ' ')} (at most {PLAUSIBLE[dimension]:g} "
+                           "in SI units)", column=starts[j])
+                return float("nan")
+            return si
 
         def positive(name: str, value: float, line_no=line_no, starts=starts) -> float:
             if np.isfinite(value) and value <= 0:
@@ -284,7 +293,8 @@ def load_hits(path: str | Path, location_from: str = "tip",
             ti = positive("inbound_gate_time", number("inbound_gate_time"))
             tr = positive("rebound_gate_time", number("rebound_gate_time"))
             assert gate_spacing is not None
-            vi, vr = gate_spacing / ti, gate_spacing / tr
+            vi = gate_spacing / ti if ti > 0 else float("nan")  # a time <= 0 is reported above
+            vr = gate_spacing / tr if tr > 0 else float("nan")
         if np.isfinite(vr) and vr < 0:
             errors.add(line_no, "rebound_speed", "is a magnitude: must not be negative",
                        column=starts[columns["rebound_speed"][0]] if speeds else None)

@@ -1230,9 +1230,79 @@ def missing_and_types() -> None:
         "bbcor", ("metric: bbcor", "metric: bbcor\nrules: []"), expect="invalid")
 
 
+SESSION = """name: Lab session (fuzz)
+bat: aluminium-34
+ball: collegiate-baseball
+pivot: 6 in
+hits: hits.csv
+"""
+HITS_HEAD = "hit,ball,inbound_speed [m/s],rebound_speed [m/s],impact_location [in from tip],valid,note\n"
+HITS_ROW = "{n},B1,60.80,13.00,6,yes,\n"
+HITS = HITS_HEAD + "".join(HITS_ROW.format(n=n) for n in range(1, 7))
+
+
+def lab_data() -> None:
+    """Lab sessions and their hits CSVs: malformed, degenerate and hostile."""
+    c = "lab"
+
+    def hits(cid, desc, text, expect="invalid", session=SESSION):
+        add(cid, c, desc, "session", session, expect=expect, files={"hits.csv": text},
+            main="session.yaml")
+
+    hits("lab-valid", "a valid session of six hits", HITS, expect="valid")
+    hits("lab-empty-csv", "an empty hits file", "")
+    hits("lab-header-only", "a header and no hits", HITS_HEAD)
+    hits("lab-bom", "a UTF-8 byte-order mark before the header", "\ufeff" + HITS)
+    hits("lab-latin1", "a file that is not UTF-8", (HITS + "7,B\xe9,60.8,13,6,yes,\n")
+         .encode("latin-1"))
+    hits("lab-nan", "NaN and infinite speeds", HITS_HEAD + "1,B1,nan,13,6,yes,\n2,B1,60.8,inf,6,"
+         "yes,\n")
+    hits("lab-zero-speed", "an inbound speed of zero", HITS_HEAD + "1,B1,0,13,6,yes,\n")
+    hits("lab-negative-rebound", "a negative rebound speed", HITS_HEAD + "1,B1,60.8,-13,6,yes,\n")
+    hits("lab-huge-speed", "a speed of 1e308 m/s", HITS_HEAD + "1,B1,1e308,13,6,yes,\n")
+    hits("lab-beyond-tip", "an impact 40 in from the tip, behind the pivot",
+         HITS_HEAD + "1,B1,60.8,13,40,yes,\n")
+    hits("lab-negative-location", "an impact -3 in from the tip", HITS_HEAD + "1,B1,60.8,13,-3,"
+         "yes,\n")
+    hits("lab-wrong-unit", "a speed column in kilograms",
+         HITS_HEAD.replace("inbound_speed [m/s]", "inbound_speed [kg]") + HITS_ROW.format(n=1))
+    hits("lab-unit-nonsense", "a unit that is no unit",
+         HITS_HEAD.replace("[m/s],rebound", "[furlongs per fortnight],rebound") + HITS_ROW.format(n=1))
+    hits("lab-duplicate-column", "a column twice", HITS_HEAD.replace(",note", ",hit")
+         + HITS_ROW.format(n=1))
+    hits("lab-short-row", "a row with too few fields", HITS + "7,B1,60.8\n")
+    hits("lab-quoted-commas", "a quoted note with commas", HITS_HEAD
+         + '1,B1,60.8,13,6,yes,"a, b, c"\n' + "".join(HITS_ROW.format(n=n) for n in range(2, 7)),
+         expect="valid")
+    hits("lab-valid-maybe", "valid is neither yes nor no", HITS_HEAD + "1,B1,60.8,13,6,maybe,\n")
+    hits("lab-gate-times-no-spacing", "gate times without the gate spacing",
+         "hit,ball,inbound_gate_time [ms],rebound_gate_time [ms],impact_location [in from tip]\n"
+         "1,B1,8.2,38,6\n")
+    hits("lab-gate-time-zero", "a gate time of zero",
+         "hit,ball,inbound_gate_time [ms],rebound_gate_time [ms],impact_location [in from tip]\n"
+         "1,B1,0,38,6\n", session=SESSION + "gate_spacing: 0.5 m\n")
+    hits("lab-all-invalid", "every hit marked invalid: nothing certified",
+         HITS.replace(",yes,", ",no,"), expect="valid")
+    hits("lab-many-columns", "2000 unknown columns", HITS_HEAD.strip() + ","
+         + ",".join(f"x{i}" for i in range(2000)) + "\n" + HITS_ROW.format(n=1))
+    add("lab-no-hits-file", c, "the session names a hits file that is missing", "session",
+        SESSION, expect="invalid", main="session.yaml")
+    add("lab-hits-is-dir", c, "the hits path is a directory", "session",
+        SESSION.replace("hits: hits.csv", "hits: ."), expect="invalid", main="session.yaml")
+    add("lab-unknown-bat", c, "an unknown bat", "session",
+        SESSION.replace("aluminium-34", "aluminum-34"), expect="invalid", main="session.yaml",
+        files={"hits.csv": HITS})
+    add("lab-bad-location-from", c, "location_from: middle", "session",
+        SESSION + "location_from: middle\n", expect="invalid", main="session.yaml",
+        files={"hits.csv": HITS})
+    add("lab-zero-required", c, "hits_required: 0", "session", SESSION + "hits_required: 0\n",
+        expect="invalid", main="session.yaml", files={"hits.csv": HITS})
+
+
 def build() -> list[Case]:
     """Every case, with unique ids."""
     ALL.clear()
+    lab_data()
     yaml_structure()
     huge_files()
     numbers()

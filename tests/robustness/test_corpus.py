@@ -40,6 +40,8 @@ COMMANDS = {
     "league": [["validate", "{f}"], ["league", "{f}", "ash-34", "aluminium-34", "--out", "{out}"]],
     "study": [["validate", "{f}"],
               ["compare", "--study", "{f}", "--engine", "rigid", "--json", "--out", "{out}"]],
+    "session": [["validate", "{f}"],
+                ["reduce", "{f}", "-p", "ncaa-bbcor", "--engine", "rigid", "--out", "{out}"]],
 }
 FORMATS = {".md", ".html", ".json"}
 NONFINITE = re.compile(r"(?<![\w.])(NaN|nan|-?Infinity|-?inf)(?![\w])")
@@ -128,7 +130,8 @@ def check(argv: list[str], rc: int, stdout: str, stderr: str, escaped, out: Path
         hits = {h for h in NONFINITE.findall(_report_text(p)) if h not in user_text}
         if hits:
             wrong.append(f"non-finite number in {p.name}: {sorted(hits)}")
-    if expect == "invalid" and argv[0] in ("validate", "run", "compare", "league") and rc in (0, 1):
+    if expect == "invalid" and argv[0] in ("validate", "run", "compare", "league", "reduce") \
+            and rc in (0, 1):
         wrong.append(f"an invalid input was accepted by {argv[0]} (exit {rc})")
     if expect == "valid" and rc not in (0, 1):
         wrong.append(f"a valid input was refused by {argv[0]} (exit {rc})")

@@ -650,10 +650,13 @@ Exit codes:
 \b
 Examples:
   batcert reduce examples/lab/synthetic-scatter.yaml -p ncaa-bbcor
-  batcert reduce examples/lab/synthetic-scatter.yaml -p ncaa-bbcor --decision-rule guarded""")
+  batcert reduce examples/lab/synthetic-scatter.yaml -p ncaa-bbcor --decision-rule guarded
+  batcert reduce examples/lab/synthetic-exact.csv --bat aluminium-34 -p ncaa-bbcor""")
 @click.argument("session")
 @click.option("--protocol", "-p", "protocol", required=True, shell_complete=_complete("protocol"),
               help="The protocol whose metric, location rule and limit certify the bat.")
+@click.option("--bat", default=None, shell_complete=_complete("bat"),
+              help="For a bare hits CSV: the bat (the protocol gives the ball and the pivot).")
 @click.option("--decision-rule", type=click.Choice(["simple", "guarded"]), default="simple",
               show_default=True, help="simple: the limit as written (the governing body's); "
                    "guarded: the value plus its expanded uncertainty must be within the limit.")
@@ -665,16 +668,16 @@ Examples:
                  "measurement.")
 @FIGURES_OPTION
 @_guard
-def reduce(session, protocol, decision_rule, calibrated_bat, engine, out_dir, formats,
+def reduce(session, protocol, bat, decision_rule, calibrated_bat, engine, out_dir, formats,
            no_reports, as_json, figures_dir):
-    """Reduce a lab SESSION's measured hits (a session YAML naming its hits CSV; see
-    docs/lab-reduction.md) to a certified value with its measurement uncertainty, and decide
-    under a declared rule."""
+    """Reduce a lab SESSION's measured hits (a session YAML naming its hits CSV, or a bare hits
+    CSV with --bat; see docs/lab-reduction.md) to a certified value with its measurement
+    uncertainty, and decide under a declared rule."""
     from batcert.commands.reduce import run_reduce
     fmts = _formats(formats)
     target = _report_dir(out_dir, no_reports, as_json)
     _check_figures_dir(figures_dir)
-    result = run_reduce(session, protocol, decision_rule, engine)
+    result = run_reduce(session, protocol, decision_rule, engine, bat)
     _deliver(result, console.lab_summary, target, fmts, as_json)
     if calibrated_bat is not None:
         _write_calibration(result, session, calibrated_bat)

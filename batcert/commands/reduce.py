@@ -55,11 +55,28 @@ def _barrel_fits(session, protocol, ball, engine: str, c) -> list[dict[str, floa
 
 
 def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
-               engine: str = "flexible") -> LabResult:
-    """Load, reduce, certify and decide; and the model's prediction of the same test."""
-    session = load_lab_session(session_path)
+               engine: str = "flexible", bat: str | None = None) -> LabResult:
+    """Load, reduce, certify and decide; and the model's prediction of the same test.
+    ``session_path`` is a session YAML, or a bare hits CSV with ``bat`` (then the protocol
+    gives the ball and the pivot)."""
+    from pathlib import Path
+
+    from batcert.errors import UsageProblem
+    from batcert.specs.hits import session_for_hits
     pin = load_protocol_any(protocol)
     p = pin.protocol
+    if Path(session_path).suffix.lower() == ".csv":
+        if bat is None:
+            raise UsageProblem("a bare hits CSV needs --bat (or give a session YAML that names "
+                               "the bat, the ball lot and the pivot)")
+        from batcert.commands.inputs import load_bat_any
+        bat_path = str(load_bat_any(bat).path)  # a clear error for an unknown bat, now
+        spec = session_for_hits(session_path, bat_path, str(pin.ball.path), p.pivot)
+        session = load_lab_session(session_path, spec)
+    else:
+        if bat is not None:
+            raise UsageProblem("--bat is for a bare hits CSV; a session YAML names its bat")
+        session = load_lab_session(session_path)
     limit = p.limit.max + p.limit.tolerance if p.limit else None
     red, c = certify(session, p, limit)
     margin, verdict = decide(c.value, limit, c.expanded, decision_rule)

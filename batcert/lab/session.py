@@ -28,9 +28,10 @@ class LabSession:
     impact_location: np.ndarray  # [m from the pivot]
 
 
-def load_lab_session(path: str | Path) -> LabSession:
-    """The session file, its bat and ball (shipped names or paths relative to it) and hits."""
-    spec = load_session(path)
+def load_lab_session(path: str | Path, spec: SessionSpec | None = None) -> LabSession:
+    """The session file (or a ``spec`` made for a bare hits CSV), its bat and ball (shipped
+    names or paths relative to it) and hits."""
+    spec = load_session(path) if spec is None else spec
     where = Path(spec.path)
     try:
         bat_path = resolve("bat", spec.bat, relative_to=where)

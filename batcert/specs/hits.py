@@ -38,7 +38,7 @@ from batcert.specs.schema import (
     section,
     text,
 )
-from batcert.specs.yamlio import load_yaml
+from batcert.specs.yamlio import Located, load_yaml
 from batcert.units import PLAUSIBLE
 
 UNCERTAINTY_SCHEMA = Schema("uncertainties", (
@@ -149,6 +149,26 @@ class Hits:
     valid: np.ndarray  # bool: the operator's validity flag
     note: list[str]
     line: list[int]  # the CSV line of each hit
+
+
+def session_for_hits(csv_path: str | Path, bat: str, ball: str, pivot: float) -> SessionSpec:
+    """A session for a bare hits CSV (``batcert reduce HITS.csv --bat BAT``): the bat given,
+    the protocol's ball and pivot, locations from the end the CSV's header names (default the
+    tip), every other field at its default."""
+    from batcert.specs.common import sha256_of
+    path = Path(csv_path)
+    data = Located()
+    data.file, data.line, data.key_pos, data.value_pos = str(path), 1, {}, {}
+    try:
+        head = next((ln for ln in path.read_text(encoding="utf-8").splitlines()
+                     if ln.strip() and not ln.lstrip().startswith("#")), "")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError([Problem(str(path), None, "", f"cannot read the hits: {exc}")]) from None
+    end = re.search(r"impact_location\s*\[[^\]]*\bfrom\s+(tip|knob|pivot)\s*\]", head)
+    return SessionSpec(Source(str(path), sha256_of(path), data), f"hits {path.name}", None,
+                       None, None, bat, ball, pivot, path.name,
+                       end.group(1) if end else "tip", None, 0.25 * 0.0254, 6, 0.44704, None,
+                       None, None)
 
 
 def load_session(path: str | Path) -> SessionSpec:

@@ -159,3 +159,18 @@ def test_reduce_cli(tmp_path):
     res = CliRunner().invoke(main, ["reduce", str(LAB / "synthetic-scatter.yaml"), "-p",
                                     "proposed", "--engine", "rigid", "--no-reports"])
     assert res.exit_code == 1 and "no value can be certified" in res.output
+
+
+def test_a_bare_hits_csv_with_bat():
+    """`reduce HITS.csv --bat BAT`: the protocol gives the ball and the pivot (ncaa-bbcor: the
+    collegiate baseball, 6 in, as the exact session's), so the certified value is the same."""
+    from batcert.errors import UsageProblem
+    bare = run_reduce(str(LAB / "synthetic-exact.csv"), "ncaa-bbcor", engine="rigid",
+                      bat="aluminium-34")
+    full = run_reduce(str(LAB / "synthetic-exact.yaml"), "ncaa-bbcor", engine="rigid")
+    assert bare.value == full.value and bare.hits_used == full.hits_used
+    with pytest.raises(UsageProblem, match="needs --bat"):
+        run_reduce(str(LAB / "synthetic-exact.csv"), "ncaa-bbcor", engine="rigid")
+    with pytest.raises(UsageProblem, match="a session YAML names its bat"):
+        run_reduce(str(LAB / "synthetic-exact.yaml"), "ncaa-bbcor", engine="rigid",
+                   bat="ash-34")

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import json
 import shlex
-import textwrap
 from pathlib import Path
 
 import pytest
@@ -22,35 +21,13 @@ REPO = Path(__file__).resolve().parents[2]
 SWEEP = ("sweep", "ash-34", "-p", "ncaa-bbcor", "--vary", "pitch_speed=40m/s:60m/s:6",
          "--engine", "rigid")
 STEM = "sweep--ncaa-bbcor-pitch-speed--ash-34"
-BBCOR_052 = """\
-    id: bbcor-052
-    title: NCAA BBCOR test with a 0.52 limit
-    reference: test (ncaa-bbcor with another limit)
-    version: "1"
-    pivot: 6 in
-    ball: collegiate-baseball
-    conditions:
-      - name: stationary-bat
-        pitch_speed: 136 mph
-        bat_angular_speed: 0 rad/s
-    impact_location:
-      rule: max-metric
-      window: [2 in, 12 in]
-    metric: bbcor
-    aggregate: mean
-    limit:
-      max: 0.52
-      source: test
-"""
 
 
 @pytest.fixture
-def bbcor_052(tmp_path) -> Path:
+def bbcor_052(fixtures_dir) -> Path:
     """ncaa-bbcor with a 0.52 limit: the rigid ash bat meets it at about 58.7 m/s
     (tests/sweeps/test_design.py derives it)."""
-    path = tmp_path / "bbcor-052.yaml"
-    path.write_text(textwrap.dedent(BBCOR_052), encoding="utf-8")
-    return path
+    return fixtures_dir / "good" / "bbcor-052.yaml"
 
 
 def check_sweep_json(data: dict, n: int) -> None:

@@ -13,44 +13,26 @@ the ball's COR is held constant, so the tests use a copy with a 0.52 limit.
 from __future__ import annotations
 
 import math
-import textwrap
+from pathlib import Path
 
 import pytest
 
 from batcert.commands.sweep import plan_sweep, run_design, run_sweep
 from batcert.model.mass import mass_properties
 from batcert.reports.sweep_view import design_statement
+from batcert.specs.protocol import load_protocol
 from batcert.sweeps.design import margin_at, solve
 from batcert.sweeps.variants import ParameterError
 
 IN = 0.0254  # [m]
 LIMIT = 0.52
-PROTOCOL = f"""\
-    id: bbcor-052
-    title: NCAA BBCOR test with a 0.52 limit
-    reference: test (ncaa-bbcor with another limit)
-    version: "1"
-    pivot: 6 in
-    ball: collegiate-baseball
-    conditions:
-      - name: stationary-bat
-        pitch_speed: 136 mph
-        bat_angular_speed: 0 rad/s
-    impact_location:
-      rule: max-metric
-      window: [2 in, 12 in]
-    metric: bbcor
-    aggregate: mean
-    limit:
-      max: {LIMIT}
-      source: test
-"""
 
 
 @pytest.fixture
-def bbcor_052(tmp_path) -> str:
-    path = tmp_path / "bbcor-052.yaml"
-    path.write_text(textwrap.dedent(PROTOCOL), encoding="utf-8")
+def bbcor_052(fixtures_dir) -> str:
+    """tests/fixtures/good/bbcor-052.yaml: ncaa-bbcor with the limit LIMIT."""
+    path = fixtures_dir / "good" / "bbcor-052.yaml"
+    assert load_protocol(path).limit.max == LIMIT  # the closed form below assumes it
     return str(path)
 
 
@@ -148,12 +130,13 @@ def test_range_needs_two_ends(bbcor_052):
 
 
 @pytest.mark.slow
-def test_flexible_wall_root_is_bracketed(tmp_path):
+def test_flexible_wall_root_is_bracketed(tmp_path, bbcor_052):
     """aluminium-34's wall under a 0.53 BBCOR limit, flexible engine (about 4 s): BBCOR falls
     from 0.537 at the nominal 2.7 mm toward the rigid bat's 0.515 as the wall thickens, so one
     root lies in 100 %..175 %; the margin has opposite signs a tolerance (1 um) either side."""
     path = tmp_path / "bbcor-053.yaml"
-    path.write_text(textwrap.dedent(PROTOCOL).replace(f"max: {LIMIT}", "max: 0.53"))
+    path.write_text(Path(bbcor_052).read_text(encoding="utf-8").replace(f"max: {LIMIT}",
+                                                                        "max: 0.53"))
     result = run_design("aluminium-34", str(path), "wall", "100%:175%", engine="flexible",
                         points=3)
     (root,) = result.design.roots

@@ -10,7 +10,6 @@ centre of percussion against the sweet spot, and the study's claims tested again
 
 from __future__ import annotations
 
-import datetime as _dt
 import math
 from collections.abc import Sequence
 from dataclasses import asdict
@@ -29,6 +28,7 @@ from batcert.results.compare import (
     StudyFigure,
 )
 from batcert.results.run import RunResult
+from batcert.results.serialise import utc_now
 
 if TYPE_CHECKING:
     from batcert.specs.study import ClaimSpec
@@ -159,7 +159,7 @@ def compare(runs: Sequence[Sequence[RunResult]], reference: int = 0, *,
         bats=list(bats), protocols=protocols, claims=[], findings=[], warnings=warnings,
         engine=first.engine, engine_settings=first.engine_settings, inputs=list(inputs.values()),
         batcert_version=__version__,
-        created=created or _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"))
+        created=created or utc_now())
     result.figures = list(figures)
     result.claims = [evaluate_claim(result, c) for c in claims]
     result.findings = findings(result)

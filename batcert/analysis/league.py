@@ -10,7 +10,6 @@ league only when every rule passes or does not apply."""
 
 from __future__ import annotations
 
-import datetime as _dt
 import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -19,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 from batcert import __version__
 from batcert.results.league import BatLeagueResult, LeagueResult, RuleResult
 from batcert.results.run import RunResult
+from batcert.results.serialise import utc_now
 from batcert.units import INCH, OUNCE
 
 if TYPE_CHECKING:
@@ -266,4 +266,4 @@ def evaluate_league(league: LeagueSpec, bats: Sequence[tuple[BatFacts, dict[str,
         sha256=league.sha256, engine=engine,
         bats=[evaluate_bat(league.rules, f, runs) for f, runs in bats],
         batcert_version=__version__,
-        created=created or _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"))
+        created=created or utc_now())

@@ -3,8 +3,6 @@ side. Every input is loaded before anything runs."""
 
 from __future__ import annotations
 
-import datetime as _dt
-
 from batcert.analysis.compare import bat_labels, compare
 from batcert.commands.inputs import (
     LoadedBat,
@@ -18,6 +16,7 @@ from batcert.commands.inputs import (
 from batcert.engines import get_engine
 from batcert.errors import UsageProblem
 from batcert.results.compare import BatEntry, ComparisonResult
+from batcert.results.serialise import utc_now
 from batcert.runner.runner import run_protocols
 from batcert.specs.resolve import display_path, resolve
 from batcert.specs.study import StudySpec
@@ -65,7 +64,7 @@ def run_comparison(bats: list[str], protocols: list[str], study: str | None = No
     proto_inputs = _protocols(spec, protocols)
     loaded, ref = _bats(bats, spec, reference)
     eng = get_engine(engine)
-    created = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    created = utc_now()
     labels = bat_labels([b.built.spec.name for b in loaded], [str(b.path) for b in loaded])
     planned = _figure_plans(spec, loaded, labels, ref, proto_inputs, engine, created) \
         if spec else []  # checked before anything runs

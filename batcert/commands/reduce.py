@@ -3,7 +3,6 @@ measurement uncertainty and a verdict under a declared decision rule (docs/lab-r
 
 from __future__ import annotations
 
-import datetime as _dt
 import math
 
 import numpy as np
@@ -13,6 +12,7 @@ from batcert.commands.inputs import load_protocol_any
 from batcert.lab.certify import DECISION_RULES, MC_DRAWS, certify, decide
 from batcert.lab.session import load_lab_session
 from batcert.results.lab import LabHit, LabLocation, LabResult
+from batcert.results.serialise import utc_now
 from batcert.specs.resolve import display_path
 
 
@@ -116,7 +116,7 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
         moi_pivot=session.moi_pivot, moi_source=session.moi_source,
         ball_mass=session.ball.model.mass, pivot=spec.pivot, scan=scan, hits=hits,
         warnings=c.warnings, inputs=inputs, batcert_version=__version__,
-        created=_dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        created=utc_now(),
         lab={k: v for k, v in (spec.lab or {}).items() if v is not None},
         barrel_fits=_barrel_fits(session, p, pin.ball, engine, c),
         model=_model(session, p, pin.ball, engine,

@@ -5,12 +5,12 @@ Every input is loaded and every variant checked before anything runs (:meth:`Pla
 
 from __future__ import annotations
 
-import datetime as _dt
 from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
 from batcert.commands.inputs import load_bat_any, load_protocol_any
+from batcert.results.serialise import utc_now
 from batcert.results.sweep import SweepResult
 from batcert.runner.runner import check_applicable
 from batcert.sweeps.execute import Journal, execute, sweep_key
@@ -18,10 +18,6 @@ from batcert.sweeps.sweep import Plan, collect, nominal_run
 from batcert.sweeps.variants import PARAMETERS, Case, ParameterError, parse_vary, read_range
 
 MAX_AXES = 2
-
-
-def _now() -> str:
-    return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
 
 
 def plan_sweep(bat: str, protocol: str, varies: list[str], engine: str = "flexible",
@@ -45,7 +41,7 @@ def plan_sweep(bat: str, protocol: str, varies: list[str], engine: str = "flexib
         name, spec = parse_vary(text)
         nominal = PARAMETERS[name].nominal(base, loaded.built)
         axes.append(read_range(name, spec, nominal, points))
-    plan = Plan(base, loaded.built, pin.ball, engine, tuple(axes), _now())
+    plan = Plan(base, loaded.built, pin.ball, engine, tuple(axes), utc_now())
     plan.check()
     return plan
 

@@ -17,6 +17,12 @@ from typing import Any, TypeVar, Union, get_args, get_origin, get_type_hints
 T = TypeVar("T")
 
 
+def utc_now() -> str:
+    """The ``created`` stamp of every result: now, UTC, ISO 8601 to the second."""
+    import datetime as _dt
+    return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+
+
 def map_floats(data: Any, fn: typing.Callable[[float], Any]) -> Any:
     """``data`` (dicts, lists and tuples, as lists) with ``fn`` applied to every float in it."""
     if isinstance(data, float):

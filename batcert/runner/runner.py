@@ -8,7 +8,6 @@ and locate the peaks (:mod:`batcert.runner.locate`), let the impact rule choose 
 
 from __future__ import annotations
 
-import datetime as _dt
 from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from typing import Any
@@ -25,6 +24,7 @@ from batcert.model.diagnostics import bat_dynamics
 from batcert.model.mass import CLEARANCE, mass_properties, pivot_problem
 from batcert.physics import rigid
 from batcert.results.run import BarrelRange, ConditionResult, InputFile, MassProperties, RunResult, Sweep
+from batcert.results.serialise import utc_now
 from batcert.runner.barrel_range import barrel_range_steps
 from batcert.runner.conditions import Condition, conditions_from_spec
 from batcert.runner.locate import Search, locate_steps
@@ -250,7 +250,7 @@ def run_protocols(jobs: list[tuple[BuiltBat, ProtocolSpec, BallSpec]], engine: E
                   on_step: Callable[[int, int, int], None] | None = None) -> list[RunResult]:
     """:func:`run_protocol` for several (bat, protocol, ball) at once, their engine batches
     solved together (:func:`drive`); the results are the same as one at a time."""
-    stamp = created or _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    stamp = created or utc_now()
     return drive([protocol_steps(b, p, ball, engine, stamp) for b, p, ball in jobs], engine,
                  on_step)
 

@@ -564,7 +564,7 @@ def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine
     """Run BAT under one protocol for every value of one or two parameters (a grid), and
     report every metric, the sweet spot and the COP against them."""
     from batcert.commands.sweep import finish_journal, journal_path, plan_sweep, run_sweep
-    from batcert.reports.write import sweep_stem
+    from batcert.reports.write import variants_stem
     fmts = _formats(formats)
     clock = _Clock()
     plan = plan_sweep(bat, protocol, list(varies), engine)
@@ -576,7 +576,9 @@ def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine
     clock.lap("inputs")
     journal = None
     if target is not None:
-        journal = journal_path(target, sweep_stem(_planned(plan)))
+        journal = journal_path(target, variants_stem(plan.base.protocol.id,
+                                                     [a.name for a in plan.axes],
+                                                     plan.base.bat.path))
     with console.progress("sweeping") as bar:
         result = run_sweep(plan, journal, resume, workers, scheduler, _counter(bar))
     clock.lap(f"engine ({len(result.points)} variants)")
@@ -586,13 +588,6 @@ def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine
     clock.lap("reports")
     clock.report()
     sys.exit(0)
-
-
-def _planned(plan):
-    """A result-like stand-in with what the report's file name is made of."""
-    from types import SimpleNamespace
-    return SimpleNamespace(design=None, protocol=plan.base.protocol.id, axes=plan.axes,
-                           bat_path=plan.base.bat.path)
 
 
 @main.command(epilog=DESIGN_EXIT_CODES + """

@@ -62,14 +62,13 @@ def run_sweep(plan: Plan, journal_at: Path | None = None, resume: bool = False,
             done = journal.load()
             plan = replace(plan, created=journal.created)
     rows = execute(plan, journal, done, workers, scheduler, on_progress)
-    result = collect(plan, rows, nominal_run(plan))
-    return result
+    return collect(plan, rows, nominal_run(plan))
 
 
 def finish_journal(journal_at: Path | None) -> None:
     """The reports are written: the journal has served."""
     if journal_at is not None:
-        Journal(journal_at, "", "").remove()
+        journal_at.unlink(missing_ok=True)
 
 
 DEFAULT_RANGE = "50%:150%"

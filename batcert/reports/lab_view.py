@@ -23,8 +23,7 @@ def _v(x: float | None, digits: int = 4) -> str:
 def lab_figures(result: LabResult) -> list[LineFigure]:
     """The metric of every hit against its distance from the tip, the location means and the
     certified value with its 95 % interval."""
-    m = result.metric.replace("-", "_") if result.metric != "collision-efficiency" \
-        else "collision_efficiency"
+    m = result.metric.replace("-", "_")  # the LabHit field of the protocol's metric
     valid = [h for h in result.hits if h.valid]
     invalid = [h for h in result.hits if not h.valid]
     series = [Series("location mean (valid hits)",

@@ -76,9 +76,16 @@ def league_stem(result: Any) -> str:
 
 def sweep_stem(result: Any) -> str:
     """``sweep--<protocol>--<parameters>--<bat file stem>`` (``design--`` for a design study)."""
-    kind = "design" if result.design is not None else "sweep"
-    what = result.protocol + "--" + "+".join(a.name for a in result.axes)
-    return _stem(kind, what, Path(result.bat_path).stem)
+    return variants_stem(result.protocol, [a.name for a in result.axes], result.bat_path,
+                         result.design is not None)
+
+
+def variants_stem(protocol: str, parameters: Sequence[str], bat_path: str,
+                  design: bool = False) -> str:
+    """The stem of :func:`sweep_stem` from its parts (a sweep's journal is named before its
+    result exists)."""
+    return _stem("design" if design else "sweep", protocol + "--" + "+".join(parameters),
+                 Path(bat_path).stem)
 
 
 def lab_stem(result: Any) -> str:

@@ -281,7 +281,7 @@ def load_hits(path: str | Path, location_from: str = "tip",
                 return float("nan")
             j, factor = columns[name]
             text_ = cells[j].strip()
-            if text_ == "" and not COLUMNS[name][1] and name == "bat_angular_speed_after":
+            if text_ == "" and name == "bat_angular_speed_after":  # not measured on this hit
                 return float("nan")
             try:
                 value = float(text_)

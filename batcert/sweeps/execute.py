@@ -69,12 +69,6 @@ class Journal:
     def add(self, chunk: int, rows: list[Row]) -> None:
         self._write("a", json.dumps({"chunk": chunk, "rows": rows}, allow_nan=False) + "\n")
 
-    def remove(self) -> None:
-        try:
-            self.path.unlink()
-        except FileNotFoundError:
-            pass
-
     def _write(self, mode: str, text: str) -> None:
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)

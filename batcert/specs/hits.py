@@ -165,10 +165,11 @@ def session_for_hits(csv_path: str | Path, bat: str, ball: str, pivot: float) ->
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError([Problem(str(path), None, "", f"cannot read the hits: {exc}")]) from None
     end = re.search(r"impact_location\s*\[[^\]]*\bfrom\s+(tip|knob|pivot)\s*\]", head)
-    return SessionSpec(Source(str(path), sha256_of(path), data), f"hits {path.name}", None,
-                       None, None, bat, ball, pivot, path.name,
-                       end.group(1) if end else "tip", None, 0.25 * 0.0254, 6, 0.44704, None,
-                       None, None)
+    defaults = {f.name: f.default for f in SESSION_SCHEMA.fields}
+    return spec_from(SessionSpec, {**defaults, "name": f"hits {path.name}", "bat": bat,
+                                   "ball": ball, "pivot": pivot, "hits": path.name,
+                                   "location_from": end.group(1) if end else "tip"},
+                     source=Source(str(path), sha256_of(path), data))
 
 
 def load_session(path: str | Path) -> SessionSpec:

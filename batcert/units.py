@@ -26,6 +26,7 @@ DIMENSIONS: dict[str, tuple[str, str, str | None, str]] = {
 }
 
 
+_BARE_NUMBER = re.compile(r"^\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*$")
 _NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([^\d.+-].*)?$")
 
 
@@ -70,6 +71,60 @@ class UnitError(ValueError):
     """A quantity that could not be parsed or has the wrong dimension."""
 
 
+class Uncertain(float):
+    """A value [SI] that carries its standard uncertainty ``u`` [same unit], read from an input
+    written ``863 g +/- 1 g``: a float everywhere (arithmetic drops ``u``), so the value flows
+    through specs and models unchanged, and :mod:`batcert.uncertainty` finds what was stated."""
+
+    u: float
+
+    def __new__(cls, value: float, u: float) -> Uncertain:
+        out = super().__new__(cls, value)
+        out.u = float(u)
+        return out
+
+    def __reduce__(self):  # keep u through pickling (worker processes)
+        return (Uncertain, (float(self), self.u))
+
+    def __repr__(self) -> str:
+        return f"{float(self)!r} +/- {self.u!r}"
+
+
+_PLUS_MINUS = re.compile(r"\s*(?:\+/-|\+-|±)\s*")
+UNCERTAIN_EXAMPLE = "863 g +/- 1 g"
+
+
+def split_uncertainty(value: object) -> tuple[object, str | None]:
+    """``"863 g +/- 1 g"`` -> (``"863 g"``, ``"1 g"``); anything else -> (value, None)."""
+    if not isinstance(value, str):
+        return value, None
+    parts = _PLUS_MINUS.split(value)
+    if len(parts) == 1:
+        return value, None
+    if len(parts) != 2 or not parts[0].strip() or not parts[1].strip():
+        raise UnitError(f"cannot read {value!r}: give a value and its standard uncertainty, "
+                        f"e.g. '{UNCERTAIN_EXAMPLE}'")
+    return parts[0].strip(), parts[1].strip()
+
+
+def parse_uncertain(value: object, dimension: str) -> float:
+    """:func:`parse_quantity`, also reading ``VALUE +/- U`` (or ``±``): then an
+    :class:`Uncertain` whose ``u`` is the standard uncertainty U (k = 1) in SI; U must be
+    given with a unit (``863 g +/- 1 g``; a bare U takes the value's unit) and be >= 0."""
+    nominal, u_text = split_uncertainty(value)
+    v = parse_quantity(nominal, dimension)
+    if u_text is None:
+        return v
+    unit = (_NUMBER_UNIT.match(str(nominal)).group(2) or "").strip()  # type: ignore[union-attr]
+    if _BARE_NUMBER.match(u_text):
+        u_text = f"{u_text} {unit}"
+    u = parse_quantity(u_text, dimension)
+    if not u >= 0:
+        raise UnitError(f"cannot read {value!r}: the uncertainty must not be negative")
+    return Uncertain(v, u)
+
+
+
 @lru_cache(maxsize=1)
 def registry():
     import pint
@@ -90,6 +145,9 @@ def parse_quantity(value: object, dimension: str) -> float:
         raise UnitError(f"a unit is required (e.g. '{example}'), got the bare number {value}")
     if not isinstance(value, str):
         raise UnitError(f"expected a {dimension.replace('_', ' ')} with a unit, e.g. '{example}'")
+    if split_uncertainty(value)[1] is not None:
+        raise UnitError(f"cannot read {value!r}: this field cannot carry an uncertainty "
+                        "('+/-'); the inputs that can are listed in docs/uncertainty.md")
     match = _NUMBER_UNIT.match(value)
     if not match:
         raise UnitError(f"cannot read {value!r}: expected a number then a unit, e.g. '{example}'")

@@ -11,7 +11,7 @@ from batcert.physics.ball import BallModel
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked
 from batcert.specs.schema import Field, FieldError, Kind, Schema, choice, number, quantity, section, text
 from batcert.specs.yamlio import LocatedList, load_yaml
-from batcert.units import UnitError, parse_quantity
+from batcert.units import Uncertain, UnitError, parse_quantity, split_uncertainty
 
 
 def _cor_points() -> Kind:
@@ -34,9 +34,10 @@ def _cor_points() -> Kind:
                 errors.add(line, sub, str(exc), col)
                 ok = False
                 continue
-            e = item[1]
-            if isinstance(e, bool) or not isinstance(e, (int, float)) or not 0 < e <= 1:
-                errors.add(line, sub, f"COR must be a number in (0, 1], got {e!r}", col)
+            try:
+                e = _cor_value(item[1])
+            except ValueError as exc:
+                errors.add(line, sub, str(exc), col)
                 ok = False
                 continue
             if v <= 0 or (speeds and v <= speeds[-1]):
@@ -44,10 +45,29 @@ def _cor_points() -> Kind:
                 ok = False
                 continue
             speeds.append(v)
-            cors.append(float(e))
+            cors.append(e)
         return (tuple(speeds), tuple(cors)) if ok else None
 
-    return Kind("list of [impact speed, COR] pairs", parse, "m/s")
+    return Kind("list of [impact speed, COR] pairs; each COR may carry `+/- u` (the ball "
+                "lot's spread)", parse, "m/s")
+
+
+def _cor_value(value: Any) -> float:
+    """A COR in (0, 1], or ``0.546 +/- 0.008`` (an :class:`Uncertain`)."""
+    text, u_text = split_uncertainty(value)
+    try:
+        e = float(text) if u_text is not None else text  # type: ignore[arg-type]
+        u = None if u_text is None else float(u_text)
+    except ValueError:
+        raise ValueError(f"COR must be a number in (0, 1], or one with its standard "
+                         f"uncertainty ('0.546 +/- 0.008'), got {value!r}") from None
+    if isinstance(e, bool) or not isinstance(e, (int, float)) or not 0 < e <= 1:
+        raise ValueError(f"COR must be a number in (0, 1], got {value!r}")
+    if u is None:
+        return float(e)
+    if not 0 <= u < 1:
+        raise ValueError(f"the COR's uncertainty must lie in [0, 1), got {value!r}")
+    return Uncertain(float(e), u)
 
 
 CONTACT_SCHEMA = Schema("contact law", (
@@ -62,7 +82,8 @@ CONTACT_SCHEMA = Schema("contact law", (
 BALL_SCHEMA = Schema("ball", (
     Field("name", text(), "Ball name shown in reports.", required=True),
     *HEADER_FIELDS,
-    Field("mass", quantity("mass", minimum=0.02, maximum=1.0), "Ball mass (20-1000 g).",
+    Field("mass", quantity("mass", minimum=0.02, maximum=1.0, uncertain=True), "Ball mass "
+          "(20-1000 g).",
           required=True),
     Field("radius", quantity("length", minimum=0.02, maximum=0.1), "Ball radius (20-100 mm).",
           required=True),

@@ -96,20 +96,20 @@ COMPRESSION_SCHEMA = Schema("barrel compression test", (
 MEASURED_SCHEMA = Schema("measured properties", (
     Field("pivot", quantity("length", minimum=0.0), "Pivot of the MOI (and origin of `cg`), "
           "from the knob end.", default=DEFAULT_PIVOT),
-    Field("mass", quantity("mass", minimum=0.1, maximum=3.0), "Measured mass (0.1-3 kg).",
+    Field("mass", quantity("mass", minimum=0.1, maximum=3.0, uncertain=True), "Measured mass (0.1-3 kg).",
           required=True),
-    Field("balance_point", quantity("length", positive=True), "CG from the knob end (F2398 "
+    Field("balance_point", quantity("length", positive=True, uncertain=True), "CG from the knob end (F2398 "
           "balance point)."),
-    Field("cg", quantity("length", positive=True), "CG from the pivot (alternative to "
+    Field("cg", quantity("length", positive=True, uncertain=True), "CG from the pivot (alternative to "
           "balance_point)."),
-    Field("moi", quantity("moi", positive=True), "Moment of inertia about the pivot."),
-    Field("radius_of_gyration", quantity("length", positive=True), "Radius of gyration about the "
+    Field("moi", quantity("moi", positive=True, uncertain=True), "Moment of inertia about the pivot."),
+    Field("radius_of_gyration", quantity("length", positive=True, uncertain=True), "Radius of gyration about the "
           "CG (Nathan 2000 Table I form); alternative to moi."),
-    Field("pendulum_period", quantity("time", positive=True), "ASTM F2398 pendulum period about "
+    Field("pendulum_period", quantity("time", positive=True, uncertain=True), "ASTM F2398 pendulum period about "
           "the pivot; I = M g (BP - pivot) T^2 / (4 pi^2). Alternative to moi."),
-    Field("first_bending_frequency", quantity("frequency", positive=True), "Measured free-free "
+    Field("first_bending_frequency", quantity("frequency", positive=True, uncertain=True), "Measured free-free "
           "first bending frequency; EI and kappa G A are scaled together so the model matches it."),
-    Field("hoop_frequency", quantity("frequency", positive=True), "Hollow bats: the barrel's "
+    Field("hoop_frequency", quantity("frequency", positive=True, uncertain=True), "Hollow bats: the barrel's "
           "lowest hoop (n = 2) frequency measured on the free bat (impact hammer and "
           "accelerometer on the barrel); the barrel shell is calibrated to it "
           "(docs/physics.md)."),
@@ -153,9 +153,9 @@ BAT_SCHEMA = Schema("bat", (
                            second_range=(0.005, 0.15)),
           "Outer diameter at stations from the knob end, interpolated linearly; held constant "
           "beyond the first and last station (5-150 mm).", required=True),
-    Field("wall", one_of(quantity("length", minimum=1e-4, maximum=0.02),
+    Field("wall", one_of(quantity("length", minimum=1e-4, maximum=0.02, uncertain=True),
                          pairs("length", "length", "position from knob", "wall thickness",
-                               second_range=(1e-4, 0.02)),
+                               second_range=(1e-4, 0.02), second_uncertain=True),
                          describe="a thickness or a list of [position, thickness] pairs"),
           "Wall thickness of a hollow bat: constant, or per station (interpolated; "
           "0.1-20 mm)."),

@@ -16,7 +16,7 @@ from typing import Any, TypeVar
 from batcert.errors import Collector, InputError, Problem
 from batcert.specs.schema import Field, FieldError, Kind, Schema, lookup, text
 from batcert.specs.yamlio import Located, LocatedList
-from batcert.units import DIMENSIONS, UnitError, parse_quantity
+from batcert.units import DIMENSIONS, UnitError, parse_quantity, parse_uncertain
 
 HEADER_FIELDS = (
     Field("description", text(), "Free text describing the file's content."),
@@ -88,11 +88,14 @@ def load_checked(path: str | Path, schema: Schema, data: Located) -> dict[str, A
 
 def pairs(first: str, second: str, first_name: str, second_name: str, *,
           second_positive: bool = True, min_items: int = 1,
-          second_range: tuple[float, float] | None = None) -> Kind:
+          second_range: tuple[float, float] | None = None,
+          second_uncertain: bool = False) -> Kind:
     """A list of ``[first, second]`` quantity pairs, e.g. ``[20 in, 2.61 in]`` (position, diameter).
 
     Returns two tuples (firsts, seconds); the firsts must increase strictly.
+    ``second_uncertain``: the second may carry its standard uncertainty (``2.7 mm +/- 0.05 mm``).
     """
+    read_second = parse_uncertain if second_uncertain else parse_quantity
     ex1, ex2 = DIMENSIONS[first][3], DIMENSIONS[second][3]
 
     def parse(value: Any, errors: Collector, path: str):
@@ -114,7 +117,7 @@ def pairs(first: str, second: str, first_name: str, second_name: str, *,
                 continue
             try:
                 x = parse_quantity(item[0], first)
-                y = parse_quantity(item[1], second)
+                y = read_second(item[1], second)
             except UnitError as exc:
                 errors.add(line, sub, str(exc), col)
                 ok = False
@@ -138,4 +141,6 @@ def pairs(first: str, second: str, first_name: str, second_name: str, *,
             ys.append(y)
         return (tuple(xs), tuple(ys)) if ok else None
 
-    return Kind(f"list of [{first_name}, {second_name}] pairs", parse, DIMENSIONS[second][1])
+    also = f"; each {second_name} may carry `+/- u`" if second_uncertain else ""
+    return Kind(f"list of [{first_name}, {second_name}] pairs{also}", parse,
+                DIMENSIONS[second][1])

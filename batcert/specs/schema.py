@@ -18,7 +18,7 @@ from typing import Any
 
 from batcert.errors import Collector
 from batcert.specs.yamlio import Located, LocatedList, where
-from batcert.units import DIMENSIONS, UnitError, parse_quantity
+from batcert.units import DIMENSIONS, UnitError, parse_quantity, parse_uncertain
 
 LARGEST_NUMBER = 1e15  # a plain number larger than this (or nan, inf) is refused
 
@@ -104,12 +104,16 @@ def validate(data: Any, schema: Schema, errors: Collector, path: str = "") -> di
 
 
 def quantity(dimension: str, *, positive: bool = False, minimum: float | None = None,
-             maximum: float | None = None, nonzero: bool = False) -> Kind:
+             maximum: float | None = None, nonzero: bool = False,
+             uncertain: bool = False) -> Kind:
+    """A quantity with its unit; ``uncertain``: it may carry its standard uncertainty,
+    ``863 g +/- 1 g`` (an :class:`~batcert.units.Uncertain`, for ``run --uncertainty``)."""
     _, si, _, example = DIMENSIONS[dimension]
+    read = parse_uncertain if uncertain else parse_quantity
 
     def parse(value: Any, errors: Collector, path: str) -> float:
         try:
-            v = parse_quantity(value, dimension)
+            v = read(value, dimension)
         except UnitError as exc:
             raise FieldError(str(exc)) from None
         if positive and not v > 0:
@@ -123,7 +127,9 @@ def quantity(dimension: str, *, positive: bool = False, minimum: float | None = 
         return v
 
     rule = " > 0" if positive else ""
-    return Kind(f"quantity ({dimension.replace('_', ' ')}{rule}), e.g. `{example}`", parse, si)
+    also = "; may carry `+/- u`" if uncertain else ""
+    return Kind(f"quantity ({dimension.replace('_', ' ')}{rule}), e.g. `{example}`{also}",
+                parse, si)
 
 
 def number(*, minimum: float | None = None, maximum: float | None = None,

@@ -202,17 +202,26 @@ def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
     """:func:`compute_barrel_modes`, memoised on what the wall depends on (LRU, 8 entries of
     about 14 MB each for a 34 in bat: the static flexibility of 24 orders).
 
-    The wall is computed once at its nominal stiffness and mass; a calibrated or varied
-    barrel (``barrel_stiffness_scale``, ``barrel_mass_scale``) is that computation scaled
-    (:meth:`BarrelModes.scaled`), which is exact. The nominal modes are computed up to the
+    The wall is computed once at its nominal stiffness and relative density; a calibrated or
+    varied barrel (``barrel_stiffness_scale``, ``barrel_mass_scale``) or a uniformly scaled
+    density is that computation scaled (:meth:`BarrelModes.scaled`), which is exact. The nominal modes are computed up to the
     frequency that the scaled ones need.
     """
     if bat.construction != "hollow":
         return None
-    s_k, s_m = bat.barrel_stiffness_scale, bat.barrel_mass_scale
+    # a bat whose density is uniformly scaled (reconciled to another measured mass) has the
+    # same wall with another mass: the key and the computation use the density relative to its
+    # largest value (to 12 digits) times that value rounded to a 1/16 step of its base-2
+    # logarithm (so the computed wall is within 2.2 % of the bat's), and the rest of the scale
+    # joins barrel_mass_scale
+    density = np.asarray(bat.linear_density, dtype=float)
+    top = float(density.max())
+    rounded = 2.0 ** (round(math.log2(top) * 16) / 16)
+    relative = np.round(density / top, 12) * rounded
+    s_k, s_m = bat.barrel_stiffness_scale, bat.barrel_mass_scale * top / rounded
     needed = float(max_frequency) / np.sqrt(s_k / s_m)  # nominal modes up to this [Hz]
     h = hashlib.sha256()
-    for a in (bat.z_edges, bat.outer_diameter, bat.inner_diameter, bat.linear_density):
+    for a in (bat.z_edges, bat.outer_diameter, bat.inner_diameter, relative):
         h.update(np.ascontiguousarray(a, dtype=float).tobytes())
     m = bat.material  # not its name or loss factor: the modes do not depend on them
     # the nominal modes are computed to a cut that depends only on what this request needs
@@ -226,7 +235,8 @@ def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
     if base is not None:
         _CACHE.move_to_end(key)
     else:
-        nominal = replace(bat, barrel_stiffness_scale=1.0, barrel_mass_scale=1.0)
+        nominal = replace(bat, linear_density=relative, barrel_stiffness_scale=1.0,
+                          barrel_mass_scale=1.0)
         base = compute_barrel_modes(nominal, cut, dynamic_orders, static_orders)
         _CACHE[key] = base
         while len(_CACHE) > 8:

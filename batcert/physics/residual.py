@@ -94,7 +94,10 @@ _FLEX_CACHE: dict = {}
 
 
 def _flexibility(bat: BatModel, modes: Modes) -> _Flexibility:
-    """The factorised static problem behind :func:`residual_compliance`, cached per modes."""
+    """The factorised static problem behind :func:`residual_compliance`, cached per modes
+    (or the flexibility that came with the modes, :func:`~batcert.physics.modes.ritz_modes`)."""
+    if modes.flexibility is not None:
+        return _Flexibility(modes.z, modes.flexibility)
     hit = _FLEX_CACHE.get(id(modes))
     if hit is not None and hit[0] is modes:
         return hit[1]
@@ -126,3 +129,10 @@ def _flexibility(bat: BatModel, modes: Modes) -> _Flexibility:
     while len(_FLEX_CACHE) > 32:
         _FLEX_CACHE.pop(next(iter(_FLEX_CACHE)))
     return flex
+
+
+def nodal_flexibility(bat: BatModel, modes: Modes) -> np.ndarray:
+    """The elastic flexibility between the nodes' transverse displacements of ``bat`` on the
+    mesh of ``modes`` [m/N], (n_nodes, n_nodes) (the static problem of
+    :func:`residual_compliance`)."""
+    return _flexibility(bat, modes).nodal

@@ -341,13 +341,7 @@ class FlexibleEngine:
         relative = np.concatenate([j[3].relative_speed for j in jobs])
         restitution: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
         if self.ball_loss == "compression":
-            distinct: list[BallModel] = []  # a run's jobs usually share one ball
-            for b in balls:
-                if not any(b == d for d in distinct):
-                    distinct.append(b)
-            laws = [contact.compression_restitution(b) for b in distinct]
-            owner = np.repeat([next(k for k, d in enumerate(distinct) if b == d) for b in balls],
-                              sizes)
+            laws, owner = _laws(balls, sizes)
 
             def by_ball(u_top, rows):
                 beta = np.empty(rows.size)
@@ -401,6 +395,42 @@ class FlexibleEngine:
             diag.update(_states(system, extras, sep, q, p, pivot, w1 * r, w1))
         return ImpactOutcome(exit_speed=vb, bat_angular_speed_after=w2, cor=cor, recoil_factor=k,
                              diagnostics=diag)
+
+
+def _laws(balls: list[BallModel], sizes: list[int]) -> tuple[list, np.ndarray]:
+    """The restitution laws of the jobs' balls and the law of each row: one law per distinct
+    ball (a run's jobs usually share one), and one vectorised law for the balls that share a
+    contact law and COR speeds but differ in mass or COR (the samples of a ball lot)."""
+    families: dict[tuple, dict[BallModel, int]] = {}
+    for b in balls:
+        families.setdefault((b.k1, b.alpha, b.cor_speeds), {}).setdefault(b, 0)
+    laws: list = []
+    law_of: dict[BallModel, tuple[int, int | None]] = {}
+    for (k1, alpha, speeds), members in families.items():
+        if len(members) == 1:
+            (b,) = members
+            law_of[b] = (len(laws), None)
+            laws.append(contact.compression_restitution(b))
+            continue
+        family = list(members)
+        for i, b in enumerate(family):
+            law_of[b] = (len(laws), i)
+        laws.append((family, k1, alpha, speeds))
+    owner = np.repeat([law_of[b][0] for b in balls], sizes)
+    member = np.repeat([-1 if law_of[b][1] is None else law_of[b][1] for b in balls], sizes)
+    out = []
+    for law in laws:
+        if callable(law):
+            out.append(law)
+            continue
+        family, k1, alpha, speeds = law
+        rows = owner == len(out)
+        mass = np.zeros(owner.size)
+        values = np.ones((owner.size, len(speeds)))
+        mass[rows] = np.array([b.mass for b in family])[member[rows]]
+        values[rows] = np.array([b.cor_values for b in family], dtype=float)[member[rows]]
+        out.append(contact.compression_restitution_rows(k1, alpha, speeds, mass, values))
+    return out, owner
 
 
 def _check_batch(bat: BatModel, pivot: float, batch: ImpactBatch, support: str) -> None:

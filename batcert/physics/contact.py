@@ -210,6 +210,27 @@ def compression_restitution(ball: BallModel):
     return beta
 
 
+def compression_restitution_rows(k1: float, alpha: float, speeds, mass, values):
+    """:func:`compression_restitution` for balls that share a contact law (``k1``, ``alpha``)
+    and the speeds of their COR points but differ, row by row, in ``mass`` [kg], shape
+    (rows,), and COR values ``values`` [-], shape (rows, points): a ball lot's spread.
+    Between the points the COR is linear in speed and it is held beyond them, as
+    :meth:`BallModel.cor`."""
+    sp = np.asarray(speeds, dtype=float)
+    mass, values = np.asarray(mass, dtype=float), np.asarray(values, dtype=float)
+
+    def beta(u_top, rows):
+        v = equivalent_wall_speed(u_top, mass[rows], k1, alpha)
+        if sp.size == 1:
+            e0 = values[rows, 0]
+        else:
+            i = np.clip(np.searchsorted(sp, v, side="right") - 1, 0, sp.size - 2)
+            t = np.clip((v - sp[i]) / (sp[i + 1] - sp[i]), 0.0, 1.0)
+            e0 = (1.0 - t) * values[rows, i] + t * values[rows, i + 1]
+        return (1.0 + alpha) / e0**2 - 1.0
+    return beta
+
+
 def peak_force(speed, mass, k1, alpha):
     """Peak force ``k1 u_m^alpha`` of a rigid-wall impact [N] (see :func:`max_compression`)."""
     return k1 * max_compression(speed, mass, k1, alpha) ** alpha

@@ -204,8 +204,8 @@ def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
 
     The wall is computed once at its nominal stiffness and relative density; a calibrated or
     varied barrel (``barrel_stiffness_scale``, ``barrel_mass_scale``) or a uniformly scaled
-    density is that computation scaled (:meth:`BarrelModes.scaled`), which is exact. The nominal modes are computed up to the
-    frequency that the scaled ones need.
+    density is that computation scaled (:meth:`BarrelModes.scaled`), which is exact. The
+    nominal modes are computed up to the frequency that the scaled ones need.
     """
     if bat.construction != "hollow":
         return None

@@ -29,7 +29,7 @@ class Modes:
     rotations: np.ndarray  # section rotation at the nodes, shape (n_modes, n_nodes)
     n_rigid: int  # number of rigid-body modes at the front (2 free, 1 pinned)
     # the elastic flexibility between the nodes' transverse displacements [m/N], (n_nodes,
-    # n_nodes), when it comes with the modes (:func:`ritz_modes`); otherwise the residual
+    # n_nodes), when it comes with the modes (batcert.physics.ritz); otherwise the residual
     # compliance solves for it from the beam
     flexibility: np.ndarray | None = None
 
@@ -44,7 +44,7 @@ class Modes:
         return self.omega[self.n_rigid:] / (2 * np.pi)
 
 
-def _eigenpairs(k: np.ndarray, m: np.ndarray, n_skip: int,
+def eigenpairs(k: np.ndarray, m: np.ndarray, n_skip: int,
                 n_want: int) -> tuple[np.ndarray, np.ndarray]:
     """Eigenpairs ``n_skip .. n_skip + n_want - 1`` (ascending) of ``k x = lam m x``.
 
@@ -67,7 +67,7 @@ def compute_modes(bat: BatModel, support: str, pivot: float, n_modes: int = 24,
     """Rigid-body and bending modes of ``bat``, mass-normalised.
 
     Solves ``K phi = omega^2 M phi`` for the Timoshenko mesh of :func:`assemble` (dense, see
-    :func:`_eigenpairs`). The rigid
+    :func:`eigenpairs`). The rigid
     modes are built exactly and put first with ``omega = 0``; each shape satisfies
     ``phi^T M phi = 1`` for the full mass matrix (translation, rotary inertia and point masses), so that a
     transverse point force ``F`` at ``z`` drives ``q_j'' + omega_j^2 q_j = phi_j(z) F`` (modal
@@ -105,7 +105,7 @@ def compute_modes(bat: BatModel, support: str, pivot: float, n_modes: int = 24,
     vectors = [rigid]
     omega = [np.zeros(n_rigid)]
     if n_bend > 0:
-        lam, vec = _eigenpairs(fe.stiffness[np.ix_(keep, keep)], fe.mass[np.ix_(keep, keep)],
+        lam, vec = eigenpairs(fe.stiffness[np.ix_(keep, keep)], fe.mass[np.ix_(keep, keep)],
                                n_rigid, n_bend)
         full = np.zeros((fe.z.size * 2, n_bend))
         full[keep] = vec
@@ -124,49 +124,6 @@ def full_vectors(modes: Modes) -> np.ndarray:
     out = np.empty((2 * modes.z.size, modes.omega.size))
     out[0::2], out[1::2] = modes.shapes.T, modes.rotations.T
     return out
-
-
-def ritz_modes(bat: BatModel, basis: Modes, flexibility: np.ndarray, n_modes: int) -> Modes:
-    """The modes of ``bat``, a small variation of the bat whose modes are ``basis``, by
-    Rayleigh-Ritz: ``K`` and ``M`` of ``bat`` (same mesh) projected on the span of ``bat``'s
-    own exact rigid modes and ``basis``'s bending modes, and the small eigenproblem solved
-    (Meirovitch, *Fundamentals of Vibrations*, 2001, Sec. 8.6). The first ``n_modes`` bending
-    modes are kept. The Ritz frequencies bound the exact ones from above and their error is of
-    second order in the change of ``K`` and ``M``; ``basis`` should hold several times
-    ``n_modes`` modes (tests/physics/test_ritz.py measures the error on sampled bats).
-
-    ``flexibility`` is ``basis``'s bat's elastic nodal flexibility (:mod:`residual`); the
-    returned modes carry ``bat``'s, estimated as that flexibility with the basis modes'
-    ``sum phi phi^T / omega^2`` replaced by the Ritz modes' (the modes beyond the basis are
-    taken as unchanged), so the residual compliance needs no new static solve.
-    """
-    z_points = [basis.pivot] + [zp for zp, _ in bat.point_masses]
-    fe = assemble(bat, mesh_nodes(bat, 1, z_points))
-    if fe.z.shape != basis.z.shape or not np.allclose(fe.z, basis.z, rtol=0, atol=1e-12):
-        raise ValueError("ritz_modes needs the same mesh as the basis modes")
-    keep = free_dofs(fe, basis.support, basis.pivot)
-    rigid = rigid_modes(fe, basis.support, basis.pivot)
-    nr = basis.n_rigid
-    v = np.concatenate([rigid, full_vectors(basis)[:, nr:]], axis=1)[keep]
-    k = v.T @ fe.stiffness[np.ix_(keep, keep)] @ v
-    m = v.T @ fe.mass[np.ix_(keep, keep)] @ v
-    lam, y = _eigenpairs(0.5 * (k + k.T), 0.5 * (m + m.T), nr, v.shape[1] - nr)
-    bend = np.zeros((2 * fe.z.size, lam.size))
-    bend[keep] = v @ y
-    bend *= np.where(bend[-2] < 0, -1.0, 1.0)
-    omega_all = np.sqrt(np.clip(lam, 0.0, None))
-    shapes_all = bend[0::2]
-    old = basis.shapes[nr:]
-    with np.errstate(divide="ignore"):
-        w_old = np.where(basis.omega[nr:] > 0, 1.0 / basis.omega[nr:] ** 2, 0.0)
-        w_new = np.where(omega_all > 0, 1.0 / omega_all ** 2, 0.0)
-    flex = flexibility - (old.T * w_old) @ old + (shapes_all * w_new) @ shapes_all.T
-    phi = np.concatenate([rigid, bend[:, :n_modes]], axis=1).T
-    return Modes(support=basis.support, pivot=basis.pivot, z=fe.z,
-                 omega=np.concatenate([np.zeros(nr), omega_all[:n_modes]]),
-                 shapes=np.ascontiguousarray(phi[:, 0::2]),
-                 rotations=np.ascontiguousarray(phi[:, 1::2]), n_rigid=nr,
-                 flexibility=0.5 * (flex + flex.T))
 
 
 def mode_nodes(modes: Modes, j: int) -> np.ndarray:

@@ -95,7 +95,7 @@ _FLEX_CACHE: dict = {}
 
 def _flexibility(bat: BatModel, modes: Modes) -> _Flexibility:
     """The factorised static problem behind :func:`residual_compliance`, cached per modes
-    (or the flexibility that came with the modes, :func:`~batcert.physics.modes.ritz_modes`)."""
+    (or the flexibility that came with the modes, :mod:`batcert.physics.ritz`)."""
     if modes.flexibility is not None:
         return _Flexibility(modes.z, modes.flexibility)
     hit = _FLEX_CACHE.get(id(modes))

@@ -1,0 +1,168 @@
+"""Modes of a small variation of a bat from its nominal modes (Rayleigh-Ritz), for the many
+drawn bats of a Monte Carlo (:mod:`batcert.uncertainty`): the nominal bat's bending modes span
+the drawn bat's, so a small eigenproblem replaces a new one (Meirovitch, *Fundamentals of
+Vibrations*, 2001, Sec. 8.6), and the elastic flexibility for the residual compliance is carried
+along instead of solved again."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from batcert.physics.batmodel import BatModel
+from batcert.physics.beam import assemble, element_matrices, free_dofs, mesh_nodes, rigid_modes
+from batcert.physics.modes import Modes, compute_modes, eigenpairs, full_vectors
+from batcert.physics.residual import nodal_flexibility
+
+
+def ritz_modes(bat: BatModel, basis: Modes, flexibility: np.ndarray | None,
+               n_modes: int) -> Modes:
+    """The modes of ``bat``, a small variation of the bat whose modes are ``basis``, by
+    Rayleigh-Ritz: ``K`` and ``M`` of ``bat`` (same mesh) projected on the span of ``bat``'s
+    own exact rigid modes and ``basis``'s bending modes, and the small eigenproblem solved
+    (Meirovitch, *Fundamentals of Vibrations*, 2001, Sec. 8.6). The first ``n_modes`` bending
+    modes are kept. The Ritz frequencies bound the exact ones from above and their error is of
+    second order in the change of ``K`` and ``M``; ``basis`` should hold several times
+    ``n_modes`` modes (tests/physics/test_ritz.py measures the error on sampled bats).
+
+    ``flexibility`` is ``basis``'s bat's elastic nodal flexibility (:mod:`residual`); the
+    returned modes carry ``bat``'s, estimated as that flexibility with the basis modes'
+    ``sum phi phi^T / omega^2`` replaced by the Ritz modes' (the modes beyond the basis are
+    taken as unchanged), so the residual compliance needs no new static solve; with None (a
+    draw that changes the stiffness) the residual compliance solves for it.
+    """
+    z_points = [basis.pivot] + [zp for zp, _ in bat.point_masses]
+    fe = assemble(bat, mesh_nodes(bat, 1, z_points))
+    if fe.z.shape != basis.z.shape or not np.allclose(fe.z, basis.z, rtol=0, atol=1e-12):
+        raise ValueError("ritz_modes needs the same mesh as the basis modes")
+    keep = free_dofs(fe, basis.support, basis.pivot)
+    rigid = rigid_modes(fe, basis.support, basis.pivot)
+    nr = basis.n_rigid
+    v = np.concatenate([rigid, full_vectors(basis)[:, nr:]], axis=1)[keep]
+    k = v.T @ fe.stiffness[np.ix_(keep, keep)] @ v
+    m = v.T @ fe.mass[np.ix_(keep, keep)] @ v
+    lam, y = eigenpairs(0.5 * (k + k.T), 0.5 * (m + m.T), nr, v.shape[1] - nr)
+    bend = np.zeros((2 * fe.z.size, lam.size))
+    bend[keep] = v @ y
+    bend *= np.where(bend[-2] < 0, -1.0, 1.0)
+    return _with_flexibility(basis, flexibility, rigid, bend,
+                             np.sqrt(np.clip(lam, 0.0, None)), n_modes)
+
+
+@dataclass(frozen=True)
+class RitzBasis:
+    """What :func:`reduced_modes` needs of a nominal bat, computed once: its modes and
+    flexibility (the basis), and the projections that make a draw whose stiffness is the
+    nominal one cost a few small matrix products.
+
+    The basis vectors are the nominal bat's bending modes and the rigid motions' fixed shapes
+    (rotation about the pin; free: translation and rotation about the knob). A draw that only
+    redistributes mass changes ``M`` alone, and ``M`` is linear in each element's
+    ``linear_density`` and ``rotary_inertia`` and in the point masses: the projected
+    ``W^T M W`` is a weighted sum of per-element projections (``unit_translation``,
+    ``unit_rotation``).
+    """
+
+    basis: Modes
+    flexibility: np.ndarray  # nominal elastic nodal flexibility [m/N], (n_nodes, n_nodes)
+    bending_stiffness: np.ndarray  # the nominal's, (slices,): the fast path's condition
+    shear_stiffness: np.ndarray
+    point_mass_positions: tuple[float, ...]  # [m from knob]
+    vectors: np.ndarray  # W on the full DOF vector, rigid shapes first, (2 n_nodes, n_w)
+    stiffness: np.ndarray  # W^T K W, (n_w, n_w)
+    slice_of_element: np.ndarray  # (elements,)
+    unit_translation: np.ndarray  # W_e^T m_e W_e for a unit linear density, (elements, n_w, n_w)
+    unit_rotation: np.ndarray  # the same for a unit rotary inertia
+    point_rows: np.ndarray  # the DOF each point mass is lumped on, (points,)
+
+
+def ritz_basis(bat: BatModel, support: str, pivot: float, n_basis: int,
+               refine: int = 1) -> tuple[RitzBasis, Modes]:
+    """The :class:`RitzBasis` of ``bat`` with ``n_basis`` bending modes (and those modes)."""
+    basis = compute_modes(bat, support, pivot, n_basis, refine)
+    flexibility = nodal_flexibility(bat, basis)
+    z = basis.z
+    n = z.size
+    rigid = []
+    if support == "free":
+        trans = np.zeros(2 * n)
+        trans[0::2] = 1.0
+        rigid.append(trans)
+    rot = np.zeros(2 * n)
+    z0 = z[int(np.argmin(np.abs(z - pivot)))] if support == "pinned" else 0.0
+    rot[0::2], rot[1::2] = z - z0, 1.0
+    rigid.append(rot)
+    w = np.concatenate([np.stack(rigid, axis=1), full_vectors(basis)[:, basis.n_rigid:]], axis=1)
+    fe = assemble(bat, z)
+    edges = np.asarray(bat.z_edges, dtype=float)
+    mid = 0.5 * (z[1:] + z[:-1])
+    s = np.clip(np.searchsorted(edges, mid, side="right") - 1, 0, edges.size - 2)
+    length = np.diff(z)
+    ones, zeros = np.ones(length.size), np.zeros(length.size)
+    _, m_t = element_matrices(length, bat.bending_stiffness[s], bat.shear_stiffness[s], ones,
+                              zeros)
+    _, m_r = element_matrices(length, bat.bending_stiffness[s], bat.shear_stiffness[s], zeros,
+                              ones)
+    dofs = 2 * np.arange(length.size)[:, None] + np.arange(4)[None, :]
+    we = w[dofs]  # (e, 4, n_w)
+    pm = np.asarray(bat.point_masses, dtype=float).reshape(-1, 2)
+    rows = 2 * np.abs(z[None, :] - pm[:, :1]).argmin(axis=1)
+    project = "eai,eab,ebj->eij"
+    return RitzBasis(basis, flexibility, np.array(bat.bending_stiffness, dtype=float),
+                     np.array(bat.shear_stiffness, dtype=float), tuple(pm[:, 0]), w,
+                     w.T @ fe.stiffness @ w, s, np.einsum(project, we, m_t, we),
+                     np.einsum(project, we, m_r, we), rows), basis
+
+
+def reduced_modes(rb: RitzBasis, bat: BatModel, n_modes: int) -> Modes:
+    """:func:`ritz_modes` of ``bat`` on ``rb``; when ``bat`` has the nominal's stiffness and
+    point-mass positions (a draw of its mass properties), from the stored projections without
+    assembling anything (the same result to rounding, tests/physics/test_ritz.py)."""
+    pm = np.asarray(bat.point_masses, dtype=float).reshape(-1, 2)
+    if not (np.array_equal(bat.bending_stiffness, rb.bending_stiffness)
+            and np.array_equal(bat.shear_stiffness, rb.shear_stiffness)
+            and tuple(pm[:, 0]) == rb.point_mass_positions):
+        return ritz_modes(bat, rb.basis, None, n_modes)
+    basis = rb.basis
+    s = rb.slice_of_element
+    m = (np.tensordot(np.asarray(bat.linear_density)[s], rb.unit_translation, 1)
+         + np.tensordot(np.asarray(bat.rotary_inertia)[s], rb.unit_rotation, 1))
+    wp = rb.vectors[rb.point_rows]  # (points, n_w)
+    m += (wp.T * pm[:, 1]) @ wp
+    m = 0.5 * (m + m.T)
+    nr = basis.n_rigid
+    lam, y = eigenpairs(rb.stiffness, m, nr, m.shape[0] - nr)
+    if nr == 1:
+        rigid_y = np.eye(m.shape[0])[:, :1] / np.sqrt(m[0, 0])
+    else:  # translation, then rotation about the CG (beam.rigid_modes)
+        e = np.eye(m.shape[0])
+        z_cg = m[0, 1] / m[0, 0]
+        rot = e[:, 1] - z_cg * e[:, 0]
+        rigid_y = np.stack([e[:, 0] / np.sqrt(m[0, 0]), rot / np.sqrt(rot @ m @ rot)], axis=1)
+    bend = rb.vectors @ y
+    bend *= np.where(bend[-2] < 0, -1.0, 1.0)
+    omega_all = np.sqrt(np.clip(lam, 0.0, None))
+    return _with_flexibility(basis, rb.flexibility, rb.vectors @ rigid_y, bend, omega_all,
+                             n_modes)
+
+
+def _with_flexibility(basis: Modes, flexibility: np.ndarray | None, rigid: np.ndarray,
+                      bend: np.ndarray, omega_all: np.ndarray, n_modes: int) -> Modes:
+    """Modes from full-vector rigid and bending modes, with the flexibility estimated as in
+    :func:`ritz_modes` (None: the residual compliance solves for it)."""
+    nr = basis.n_rigid
+    flex = None
+    if flexibility is not None:
+        old = basis.shapes[nr:]
+        shapes_all = bend[0::2]
+        w_old = np.where(basis.omega[nr:] > 0, 1.0 / np.where(basis.omega[nr:] > 0,
+                                                             basis.omega[nr:], 1.0) ** 2, 0.0)
+        w_new = np.where(omega_all > 0, 1.0 / np.where(omega_all > 0, omega_all, 1.0) ** 2, 0.0)
+        flex = flexibility - (old.T * w_old) @ old + (shapes_all * w_new) @ shapes_all.T
+        flex = 0.5 * (flex + flex.T)
+    phi = np.concatenate([rigid, bend[:, :n_modes]], axis=1).T
+    return Modes(support=basis.support, pivot=basis.pivot, z=basis.z,
+                 omega=np.concatenate([np.zeros(nr), omega_all[:n_modes]]),
+                 shapes=np.ascontiguousarray(phi[:, 0::2]),
+                 rotations=np.ascontiguousarray(phi[:, 1::2]), n_rigid=nr, flexibility=flex)

@@ -222,16 +222,26 @@ def main(verbose: int, quiet: bool) -> None:
 Examples:
   batcert run bats/aluminium-34.yaml --protocol proposed
   batcert run ash-34 -p ncaa-bbcor -p ncaa-besr --out reports/ash
-  batcert run ash-34 -p proposed --engine rigid --json | jq .results[0].value""")
+  batcert run ash-34 -p proposed --engine rigid --json | jq .results[0].value
+  batcert run ash-34 -p ncaa-bbcor --uncertainty 1000""")
 @click.argument("bat", shell_complete=_complete("bat"))
 @click.option("--protocol", "-p", "protocols", multiple=True, required=True,
               shell_complete=_complete("protocol"),
               help="Shipped protocol id (see `batcert list protocols`) or a protocol YAML path; "
                    "repeat for several.")
+@click.option("--uncertainty", "samples", type=click.IntRange(2, 1_000_000), default=None,
+              metavar="N", help="Also propagate the uncertainties the bat and ball files "
+              "state ('mass: 863 g +/- 1 g') through the engine by Monte Carlo with N draws, "
+              "and report the result's distribution and the probability of passing "
+              "(docs/uncertainty.md). The verdict stays the nominal one.")
+@click.option("--seed", type=click.IntRange(0, 2**63 - 1), default=None,
+              help="Random seed of the --uncertainty draws [default: 20011; the same seed "
+                   "gives the same draws].")
 @_output_options("results")
 @FIGURES_OPTION
 @_guard
-def run(bat, protocols, engine, out_dir, formats, no_reports, as_json, figures_dir):
+def run(bat, protocols, samples, seed, engine, out_dir, formats, no_reports, as_json,
+        figures_dir):
     """Run BAT (a bat YAML path or shipped bat name) under one or more protocols, print the
     verdict and write Markdown, HTML and JSON reports."""
     from batcert.commands.inputs import load_bat_any, load_protocol_any
@@ -244,11 +254,20 @@ def run(bat, protocols, engine, out_dir, formats, no_reports, as_json, figures_d
     clock.lap("inputs")
     target = _report_dir(out_dir, no_reports, as_json)
     _check_figures_dir(figures_dir)
+    if seed is not None and samples is None:
+        from batcert.errors import UsageProblem
+        raise UsageProblem("--seed needs --uncertainty N")
     with console.progress("running") as bar:
         results = run_bat(loaded, inputs, engine, on_step=_stepper(bar))
     console.log(f"engine {engine}: " + "; ".join(f"{k} {v}" for k, v in
                                                  results[0].engine_settings.items()))
     clock.lap("engine")
+    if samples is not None:
+        from batcert.commands.run import with_uncertainty
+        with console.progress("Monte Carlo") as bar:
+            results = with_uncertainty(loaded, inputs, results, samples, seed, engine,
+                                       on_progress=_counter(bar, "draws"))
+        clock.lap("uncertainty")
 
     def show(results, written):
         if as_json:
@@ -526,10 +545,10 @@ def _scale_options(func):
     return func
 
 
-def _counter(bar):
+def _counter(bar, what: str = "variants"):
     def on_progress(done: int, total: int) -> None:
-        bar.count(done, total)
-        console.log(f"{done} of {total} variants", level=2)
+        bar.count(done, total, what)
+        console.log(f"{done} of {total} {what}", level=2)
     return on_progress
 
 

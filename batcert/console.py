@@ -259,6 +259,9 @@ def run_summary(result, paths: Sequence[Any]) -> None:
                        fmt.metric_value(c.bbcor, "bbcor"),
                        fmt.metric_value(c.collision_efficiency, "collision-efficiency")])
     table(t)
+    if result.uncertainty is not None:
+        from batcert.reports.uncertainty_view import summary_sentence
+        _emit([("  " + summary_sentence(result), "")])
     _warnings(result.warnings)
     _wrote(paths)
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from batcert.commands.inputs import LoadedBat, ProtocolInputs
 from batcert.engines import get_engine
 from batcert.results.run import RunResult
@@ -15,3 +17,17 @@ def run(bat: LoadedBat, protocols: list[ProtocolInputs], engine: str = "flexible
     eng = get_engine(engine, **engine_options)
     return run_protocols([(bat.built, p.protocol, p.ball) for p in protocols], eng,
                          on_step=on_step)
+
+
+def with_uncertainty(bat: LoadedBat, protocols: list[ProtocolInputs], results: list[RunResult],
+                     samples: int, seed: int | None = None, engine: str = "flexible",
+                     on_progress=None, **engine_options) -> list[RunResult]:
+    """``results`` (of :func:`run`) with the distribution of each result over ``samples``
+    Monte Carlo draws of the stated input uncertainties (:mod:`batcert.uncertainty`; ``seed``
+    None: its default seed)."""
+    from batcert.uncertainty.propagate import DEFAULT_SEED, Job, monte_carlo
+    eng = get_engine(engine, **engine_options)
+    jobs = [Job(p.protocol, p.ball, r) for p, r in zip(protocols, results, strict=True)]
+    spread = monte_carlo(bat.built, jobs, eng, samples, DEFAULT_SEED if seed is None else seed,
+                         on_progress)
+    return [replace(r, uncertainty=u) for r, u in zip(results, spread, strict=True)]

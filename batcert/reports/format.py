@@ -8,6 +8,7 @@ aggregate words from theirs. Nothing here computes physics.
 
 from __future__ import annotations
 
+import math
 import re
 import unicodedata
 from collections.abc import Iterator
@@ -88,6 +89,21 @@ def metric_value(value: float | None, metric: str, signed_: bool = False) -> Dis
         return Display(signed(f"{_nz(value):{sign}.{digits}f} m/s"),
                        signed(f"{_nz(to_us(value, 'speed')):{sign}.1f} mph"))
     return Display(signed(f"{_nz(value):{sign}.{digits}f}"), None)
+
+
+def metric_spread(value: float | None, metric: str, signed_: bool = False) -> Display:
+    """A spread or change of a protocol metric (a standard deviation, a sensitivity), to two
+    significant digits, with the metric's unit."""
+    if value is None:
+        return Display(DASH, None)
+    if value and abs(value) < 1e-6:  # a rounding-level difference
+        text = signed(f"{value:{'+' if signed_ else ''}.1e}")
+        return Display(text + (" m/s" if metric == "exit-speed" else ""), None)
+    digits = max(0, 1 - math.floor(math.log10(abs(value)))) if value else 0
+    text = signed(f"{_nz(value):{'+' if signed_ else ''}.{digits}f}")
+    if metric == "exit-speed":
+        return Display(f"{text} m/s", signed(f"{to_us(value, 'speed'):.{digits}f} mph"))
+    return Display(text, None)
 
 
 def plain(value: float | None, digits: int = 3) -> Display:

@@ -66,7 +66,9 @@ def run_figures(result: RunResult) -> list[Figure]:
             vlines=_cop_lines(result), point_legend="impact point",
             points=[svg.Point(c.impact_location, c.metric_value, i)
                     for i, c in enumerate(result.conditions)]))
-    return figs
+    from batcert.reports.uncertainty_view import uncertainty_figure
+    spread = uncertainty_figure(result)
+    return figs + ([spread] if spread is not None else [])
 
 
 def css_string(text: object):
@@ -88,7 +90,10 @@ def run_html(result: RunResult) -> str:
 
     from batcert.reports.run_view import run_view
     view = run_view(result)
-    view["charts"] = [Markup(svg_of(f)) for f in run_figures(result)]
+    figures = run_figures(result)
+    view["charts"] = [Markup(svg_of(f)) for f in figures if f.name != "uncertainty"]
+    view["uncertainty_chart"] = next((Markup(svg_of(f)) for f in figures
+                                      if f.name == "uncertainty"), None)
     return render_template("report.html.j2", view, FILTERS)
 
 

@@ -6,6 +6,7 @@ from typing import Any
 
 from batcert.reports import format as fmt
 from batcert.reports.table import Table
+from batcert.reports.uncertainty_view import uncertainty_view
 from batcert.results.run import RunResult
 from batcert.units import Display, to_us, us_unit
 
@@ -252,4 +253,5 @@ def run_view(result: RunResult) -> dict[str, Any]:
         "modes": modes_table(result),
         "print_header": f"{result.bat} \u2014 {result.protocol} \u2014 {shown['label']}",
         "show_metric_plot": shows_metric_plot(result),
+        "uncertainty": uncertainty_view(result),
     }

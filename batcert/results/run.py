@@ -88,6 +88,54 @@ class BarrelRange:
 
 
 @dataclass
+class InputUncertainty:
+    """One input whose stated uncertainty went into the Monte Carlo, and what it did."""
+
+    file: str  # "bat" | "ball"
+    path: str  # the file, as given
+    field: str  # dotted field in the file ("measured.mass", "wall", "cor")
+    line: int | None
+    dimension: str | None  # batcert.units dimension of nominal and u; None for the COR
+    nominal: list[float]  # [SI] one value, or one per wall station / COR point
+    u: list[float]  # standard uncertainties (k = 1) [SI], same shape
+    distribution: str  # normal | uniform (then u is the half-width / sqrt 3)
+    sensitivity: float  # change of the result per standard uncertainty of this input (the
+    # least-squares slope of the result on the input's standard normal draws) [metric unit]
+    variance_share: float  # sensitivity^2 over the sum of all sensitivities^2 [-]
+
+
+@dataclass
+class PredictedUncertainty:
+    """The result's distribution over the stated input uncertainties (``run --uncertainty``):
+    Monte Carlo through the engine (JCGM 101), with the probability of passing."""
+
+    samples: int  # Monte Carlo draws [-]
+    seed: int  # random seed of the draws [-]
+    method: str  # how each draw was solved, in words
+    inputs: list[InputUncertainty]
+    mean: float  # [metric unit]
+    standard_deviation: float  # [metric unit]
+    median: float
+    interval_low: float  # 2.5th percentile: with interval_high the 95 % coverage interval
+    interval_high: float  # 97.5th percentile (probabilistically symmetric, JCGM 101 7.7)
+    minimum: float
+    maximum: float
+    mean_standard_error: float  # standard deviation / sqrt(samples) [metric unit]
+    linear_r2: float  # share of the variance a linear model in the draws explains [-]
+    pass_probability: float | None  # share of draws within the limit (None without a limit)
+    pass_probability_standard_error: float | None  # sqrt(p (1 - p) / samples)
+    nominal_value: float  # the run's result [metric unit]
+    interpolation_error: float  # the largest difference between a draw's result as the
+    # Monte Carlo finds it (from impacts around the nominal points) and from impacts at its own
+    # points, over the checked draws [metric unit]
+    checked_draws: int  # draws checked so (the farthest from the mean and the first) [-]
+    largest_location_shift: float  # the largest move of a draw's impact point from the
+    # nominal one [m]
+    values: list[float]  # the result of every draw, in draw order
+    note: str = ""  # what the distribution does not include (e.g. the barrel's range)
+
+
+@dataclass
 class InputFile:
     role: str  # "bat" | "protocol" | "ball"
     name: str
@@ -123,3 +171,4 @@ class RunResult(Serialisable):
     warnings: list[str] = field(default_factory=list)
     extras: dict[str, Any] = field(default_factory=dict)  # the bat's dynamics (modes, barrel)
     barrel: BarrelRange | None = None  # hollow bats with the flexible engine
+    uncertainty: PredictedUncertainty | None = None  # with `run --uncertainty N`

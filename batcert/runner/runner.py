@@ -43,6 +43,7 @@ class Bench:
     engine: Engine
     pivot: float  # [m from knob]
     support: str  # pinned | free
+    modes: Any = None  # the bat's modes when given (a sampled bat's Ritz modes), else computed
 
     def request(self, conds: list[Condition], locations: np.ndarray) -> Request:
         """Every condition at its row of ``locations`` (shape (n_cond, n_loc)), as one batch."""
@@ -70,7 +71,8 @@ class Request:
 
     def job(self) -> tuple:
         b = self.bench
-        return (b.built.model, b.ball.model, b.pivot, self.batch, b.support)
+        job = (b.built.model, b.ball.model, b.pivot, self.batch, b.support)
+        return job if b.modes is None else (*job, b.modes)
 
     def finish(self, out: ImpactOutcome) -> tuple[ImpactMetrics, dict[str, np.ndarray]]:
         batch, ball = self.batch, self.bench.ball.model

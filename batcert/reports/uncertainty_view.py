@@ -1,0 +1,132 @@
+"""The certificate's section on a predicted result's uncertainty (``run --uncertainty N``):
+the distribution, the probability of passing, what each input contributed and how far to
+trust the numbers."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from batcert.reports import format as fmt
+from batcert.reports import svg
+from batcert.reports.figure import LineFigure
+from batcert.reports.table import Table
+from batcert.results.run import InputUncertainty, PredictedUncertainty, RunResult
+from batcert.units import Display, show
+
+BINS = 30  # histogram bins of the draws
+
+
+def _digits(u: float) -> int:
+    """Decimals that show ``u`` [SI] to two significant digits (at least three)."""
+    return max(3, 1 - math.floor(math.log10(u))) if u > 0 else 3
+
+
+def _amount(value: float, u: float, dimension: str | None, us: bool = True) -> Display:
+    if dimension is None:
+        return Display(f"{value:.{_digits(u)}f}", None)
+    shown = show(value, dimension, _digits(u))
+    return shown if us else Display(shown.si, None)
+
+
+def input_value(i: InputUncertainty) -> tuple[Display, Display]:
+    """The input's nominal value (a list of stations or points: its range) and its stated
+    +/- (the largest, when stations state several), the +/- in SI only."""
+    k = max(range(len(i.u)), key=lambda j: i.u[j])
+    stated = i.u[k] * (math.sqrt(3.0) if i.distribution == "uniform" else 1.0)
+    spread = _amount(stated, i.u[k], i.dimension, us=False)
+    if len(i.nominal) == 1:
+        return _amount(i.nominal[0], i.u[k], i.dimension), spread
+    lo, hi = (_amount(v, i.u[k], i.dimension, us=False).si for v in (min(i.nominal),
+                                                                       max(i.nominal)))
+    what = "stations" if i.field == "wall" else "points"
+    return Display(f"{lo} to {hi} ({len(i.nominal)} {what})", None), spread
+
+
+def inputs_table(result: RunResult) -> Table:
+    u = result.uncertainty
+    assert u is not None
+    rows = []
+    for i in u.inputs:
+        value, spread = input_value(i)
+        where = f"{i.path}:{i.line}" if i.line else i.path
+        rows.append([f"{i.file} {i.field}", where, value, spread,
+                     "normal (± = u)" if i.distribution == "normal" else "uniform (± = half-width)",
+                     fmt.metric_spread(i.sensitivity, result.metric, signed_=True),
+                     f"{100 * i.variance_share:.1f} %"])
+    return Table(["Input", "File:line", "Value", "±", "Distribution",
+                  f"{fmt.metric_word(result.metric)} per u", "Share of variance"], rows,
+                 numeric=[False, False, True, True, False, True, True])
+
+
+def summary_sentence(result: RunResult) -> str:
+    u = result.uncertainty
+    assert u is not None
+    m = result.metric
+    spread = fmt.metric_spread(u.standard_deviation, m).si
+    digits = len(spread.split(" ")[0].split(".")[-1]) if "." in spread else 0
+    v = lambda x: f"{x:.{digits}f}" + (" m/s" if m == "exit-speed" else "")  # noqa: E731
+    text = (f"Over {u.samples} Monte Carlo draws of the stated input uncertainties (seed "
+            f"{u.seed}), {fmt.metric_word(m)} = {v(u.mean)} with standard deviation "
+            f"{spread}; 95 % of the draws lie between {v(u.interval_low)} and "
+            f"{v(u.interval_high)}.")
+    if u.pass_probability is not None:
+        text += (f" Probability of passing: {u.pass_probability:.3f} (Monte Carlo standard "
+                 f"error {u.pass_probability_standard_error:.3f}).")
+    return text
+
+
+def checks_table(result: RunResult) -> Table:
+    u = result.uncertainty
+    assert u is not None
+    m = result.metric
+    return Table(["Check", "Value", "Meaning"], [
+        ["Standard error of the mean", fmt.metric_spread(u.mean_standard_error, m),
+         "standard deviation / sqrt(draws)"],
+        ["Interpolation check", fmt.metric_spread(u.interpolation_error, m),
+         f"largest difference, over {u.checked_draws} draws, between the result from the "
+         "impacts around the nominal points and from impacts at the draw's own points"],
+        ["Largest move of an impact point", fmt.quantity(u.largest_location_shift, "length", 4),
+         "how far a draw's located impact point moved from the nominal one"],
+        ["Linear R²", f"{u.linear_r2:.3f}",
+         "share of the variance a straight line in the inputs explains"],
+    ], numeric=[False, True, False])
+
+
+def uncertainty_view(result: RunResult) -> dict[str, Any] | None:
+    """The section's content, None without ``--uncertainty``."""
+    u = result.uncertainty
+    if u is None:
+        return None
+    return {"sentence": summary_sentence(result), "inputs": inputs_table(result),
+            "checks": checks_table(result), "method": u.method, "note": u.note}
+
+
+def histogram(u: PredictedUncertainty) -> tuple[list[float], list[float]]:
+    """Bin centres and the share of draws per bin [-] (:data:`BINS` bins over the draws)."""
+    lo, hi = u.minimum, u.maximum
+    if hi <= lo:
+        return [lo], [1.0]
+    width = (hi - lo) / BINS
+    counts = [0] * BINS
+    for x in u.values:
+        counts[min(int((x - lo) / width), BINS - 1)] += 1
+    return ([lo + (k + 0.5) * width for k in range(BINS)],
+            [c / len(u.values) for c in counts])
+
+
+def uncertainty_figure(result: RunResult) -> LineFigure | None:
+    """The draws' distribution with the limit, the nominal value and the 95 % interval."""
+    u = result.uncertainty
+    if u is None:
+        return None
+    name = fmt.metric_name(result.metric)
+    x, y = histogram(u)
+    lines = [svg.VLine(u.nominal_value, "nominal"), svg.VLine(u.interval_low, "2.5 %"),
+             svg.VLine(u.interval_high, "97.5 %")]
+    if result.limit is not None:
+        lines.append(svg.VLine(result.limit + result.tolerance, "limit", svg.PALETTE[1]))
+    return LineFigure("uncertainty", f"{name} over {u.samples} draws of the input "
+                      "uncertainties", f"{name} [-]", "Share of draws per bin [-]",
+                      [svg.Series("draws", x, y)], vlines=lines,
+                      caption="Frequency polygon of the Monte Carlo draws.")

@@ -17,8 +17,9 @@ REPO = Path(__file__).resolve().parents[2]
 def calibrated_bat(tmp_path: Path, hoop: str) -> Path:
     """aluminium-34 with a measured hoop frequency added to its measured block."""
     text = (REPO / "bats" / "aluminium-34.yaml").read_text()
-    text = text.replace("  moi: 0.198 kg*m^2 # about the pivot\n",
-                        f"  moi: 0.198 kg*m^2 # about the pivot\n  hoop_frequency: {hoop}\n")
+    text = text.replace("  moi: 0.198 kg*m^2 +/- 0.0005 kg*m^2 (uniform) # about the pivot\n",
+                        "  moi: 0.198 kg*m^2 +/- 0.0005 kg*m^2 (uniform) # about the pivot\n"
+                        f"  hoop_frequency: {hoop}\n")
     assert "hoop_frequency" in text
     path = tmp_path / "aluminium-34-hoop.yaml"
     path.write_text(text)

@@ -180,7 +180,8 @@ def test_pendulum_period_spec_reconciles(tmp_path):
     mass, cg, moi, pivot = 0.906, 0.429, 0.209, 0.150
     period = 2 * math.pi * math.sqrt(moi / (mass * 9.80665 * cg))
     text = (BATS / "ash-34.yaml").read_text().replace(
-        "moi: 0.209 kg*m^2 # about the pivot", f"pendulum_period: {period:.12f} s")
+        "moi: 0.209 kg*m^2 +/- 0.0005 kg*m^2 (uniform) # about the pivot",
+        f"pendulum_period: {period:.12f} s")
     path = tmp_path / "ash-pendulum.yaml"
     path.write_text(text)
     model = build_bat(load_bat(path)).model

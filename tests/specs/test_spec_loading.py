@@ -54,7 +54,11 @@ def test_ash_spec_in_si(repo_root):
     assert spec.measured.cg == pytest.approx(0.429)
     assert spec.measured.moi == pytest.approx(0.209)
     assert spec.material.name == "ash-bat"
-    assert spec.source.line("measured", "mass") == spec.source.line("measured") + 2
+    # two comment lines and the pivot lie between `measured:` and its mass
+    assert spec.source.line("measured", "mass") == spec.source.line("measured") + 4
+    # the stated uncertainties: half the last digit, uniform (u = half-width / sqrt 3)
+    assert spec.measured.mass.u == pytest.approx(0.0005 / np.sqrt(3))
+    assert spec.measured.moi.distribution == "uniform"
     assert len(spec.sha256) == 64
 
 

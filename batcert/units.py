@@ -71,26 +71,38 @@ class UnitError(ValueError):
     """A quantity that could not be parsed or has the wrong dimension."""
 
 
+DISTRIBUTIONS = ("normal", "uniform")
+
+
 class Uncertain(float):
-    """A value [SI] that carries its standard uncertainty ``u`` [same unit], read from an input
-    written ``863 g +/- 1 g``: a float everywhere (arithmetic drops ``u``), so the value flows
+    """A value [SI] that carries its uncertainty, read from an input written ``863 g +/- 1 g``
+    (``u`` = 1 g, the standard uncertainty of a normal distribution) or ``863 g +/- 0.5 g
+    (uniform)`` (0.5 g, the half-width of a rectangular distribution; ``u`` = 0.5 g / sqrt 3,
+    JCGM 100 4.3.7): a float everywhere (arithmetic drops the rest), so the value flows
     through specs and models unchanged, and :mod:`batcert.uncertainty` finds what was stated."""
 
-    u: float
+    u: float  # standard uncertainty [same unit]
+    distribution: str  # normal | uniform
 
-    def __new__(cls, value: float, u: float) -> Uncertain:
+    def __new__(cls, value: float, u: float, distribution: str = "normal") -> Uncertain:
         out = super().__new__(cls, value)
-        out.u = float(u)
+        out.u, out.distribution = float(u), distribution
         return out
 
+    @property
+    def half_width(self) -> float:
+        """The stated ``+/-``: u for a normal distribution, the half-width for a uniform one."""
+        return self.u * math.sqrt(3.0) if self.distribution == "uniform" else self.u
+
     def __reduce__(self):  # keep u through pickling (worker processes)
-        return (Uncertain, (float(self), self.u))
+        return (Uncertain, (float(self), self.u, self.distribution))
 
     def __repr__(self) -> str:
-        return f"{float(self)!r} +/- {self.u!r}"
+        return f"{float(self)!r} +/- {self.half_width!r} ({self.distribution})"
 
 
 _PLUS_MINUS = re.compile(r"\s*(?:\+/-|\+-|±)\s*")
+_DISTRIBUTION = re.compile(r"^(.*?)\s*\(\s*(\w+)\s*\)\s*$")
 UNCERTAIN_EXAMPLE = "863 g +/- 1 g"
 
 
@@ -107,21 +119,39 @@ def split_uncertainty(value: object) -> tuple[object, str | None]:
     return parts[0].strip(), parts[1].strip()
 
 
+def read_spread(value: object, u_text: str) -> tuple[str, str]:
+    """``"0.5 g (uniform)"`` -> (``"0.5 g"``, ``"uniform"``); without a distribution, normal."""
+    m = _DISTRIBUTION.match(u_text)
+    if m is None:
+        return u_text, "normal"
+    if m.group(2) not in DISTRIBUTIONS:
+        raise UnitError(f"cannot read {value!r}: unknown distribution {m.group(2)!r} (choose "
+                        f"{' or '.join(DISTRIBUTIONS)})")
+    return m.group(1), m.group(2)
+
+
+def uncertain(v: float, spread: float, distribution: str, value: object) -> Uncertain:
+    """The :class:`Uncertain` of ``v`` with the stated ``+/-`` ``spread`` (both SI)."""
+    if not spread >= 0:
+        raise UnitError(f"cannot read {value!r}: the uncertainty must not be negative")
+    u = spread / math.sqrt(3.0) if distribution == "uniform" else spread
+    return Uncertain(v, u, distribution)
+
+
 def parse_uncertain(value: object, dimension: str) -> float:
-    """:func:`parse_quantity`, also reading ``VALUE +/- U`` (or ``±``): then an
-    :class:`Uncertain` whose ``u`` is the standard uncertainty U (k = 1) in SI; U must be
-    given with a unit (``863 g +/- 1 g``; a bare U takes the value's unit) and be >= 0."""
+    """:func:`parse_quantity`, also reading ``VALUE +/- U`` (or ``±``), optionally followed by
+    ``(normal)`` (the default: U is the standard uncertainty, k = 1) or ``(uniform)`` (U is the
+    half-width of a rectangular distribution): then an :class:`Uncertain`. U takes the value's
+    unit when given as a bare number and must be >= 0."""
     nominal, u_text = split_uncertainty(value)
     v = parse_quantity(nominal, dimension)
     if u_text is None:
         return v
+    u_text, distribution = read_spread(value, u_text)
     unit = (_NUMBER_UNIT.match(str(nominal)).group(2) or "").strip()  # type: ignore[union-attr]
     if _BARE_NUMBER.match(u_text):
         u_text = f"{u_text} {unit}"
-    u = parse_quantity(u_text, dimension)
-    if not u >= 0:
-        raise UnitError(f"cannot read {value!r}: the uncertainty must not be negative")
-    return Uncertain(v, u)
+    return uncertain(v, parse_quantity(u_text, dimension), distribution, value)
 
 
 

@@ -11,7 +11,7 @@ from batcert.physics.ball import BallModel
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked
 from batcert.specs.schema import Field, FieldError, Kind, Schema, choice, number, quantity, section, text
 from batcert.specs.yamlio import LocatedList, load_yaml
-from batcert.units import Uncertain, UnitError, parse_quantity, split_uncertainty
+from batcert.units import UnitError, parse_quantity, read_spread, split_uncertainty, uncertain
 
 
 def _cor_points() -> Kind:
@@ -55,9 +55,14 @@ def _cor_points() -> Kind:
 def _cor_value(value: Any) -> float:
     """A COR in (0, 1], or ``0.546 +/- 0.008`` (an :class:`Uncertain`)."""
     text, u_text = split_uncertainty(value)
+    distribution = "normal"
     try:
+        if u_text is not None:
+            u_text, distribution = read_spread(value, u_text)
         e = float(text) if u_text is not None else text  # type: ignore[arg-type]
         u = None if u_text is None else float(u_text)
+    except UnitError as exc:
+        raise ValueError(str(exc)) from None
     except ValueError:
         raise ValueError(f"COR must be a number in (0, 1], or one with its standard "
                          f"uncertainty ('0.546 +/- 0.008'), got {value!r}") from None
@@ -67,7 +72,7 @@ def _cor_value(value: Any) -> float:
         return float(e)
     if not 0 <= u < 1:
         raise ValueError(f"the COR's uncertainty must lie in [0, 1), got {value!r}")
-    return Uncertain(float(e), u)
+    return uncertain(float(e), u, distribution, value)
 
 
 CONTACT_SCHEMA = Schema("contact law", (

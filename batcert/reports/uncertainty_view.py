@@ -83,9 +83,9 @@ def checks_table(result: RunResult) -> Table:
     return Table(["Check", "Value", "Meaning"], [
         ["Standard error of the mean", fmt.metric_spread(u.mean_standard_error, m),
          "standard deviation / sqrt(draws)"],
-        ["Interpolation check", fmt.metric_spread(u.interpolation_error, m),
-         f"largest difference, over {u.checked_draws} draws, between the result from the "
-         "impacts around the nominal points and from impacts at the draw's own points"],
+        ["Full-run check", fmt.metric_spread(u.full_run_difference, m),
+         f"largest difference, over {u.checked_draws} draws, between the Monte Carlo's result "
+         "and a full run of the drawn bat (new modes, the whole search)"],
         ["Largest move of an impact point", fmt.quantity(u.largest_location_shift, "length", 4),
          "how far a draw's located impact point moved from the nominal one"],
         ["Linear R²", f"{u.linear_r2:.3f}",

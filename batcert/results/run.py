@@ -125,9 +125,9 @@ class PredictedUncertainty:
     pass_probability: float | None  # share of draws within the limit (None without a limit)
     pass_probability_standard_error: float | None  # sqrt(p (1 - p) / samples)
     nominal_value: float  # the run's result [metric unit]
-    interpolation_error: float  # the largest difference between a draw's result as the
-    # Monte Carlo finds it (from impacts around the nominal points) and from impacts at its own
-    # points, over the checked draws [metric unit]
+    full_run_difference: float  # the largest difference, over the checked draws, between a
+    # draw's result as the Monte Carlo finds it (Ritz modes, a stencil around the nominal
+    # impact points) and as a full run of the drawn bat finds it [metric unit]
     checked_draws: int  # draws checked so (the farthest from the mean and the first) [-]
     largest_location_shift: float  # the largest move of a draw's impact point from the
     # nominal one [m]

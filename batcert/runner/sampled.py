@@ -17,8 +17,8 @@ least-squares parabolas through them give the rest:
 
 Both are smooth functions of the inputs and the parabolas' own error cancels in the
 differences; the nominal inputs give the nominal point and result exactly. How close this is
-to an impact solved at the draw's point is checked on every run
-(:func:`final_steps`; ``interpolation_error`` in the results).
+to a full run of the drawn bat is checked on every run (``full_run_difference``,
+:mod:`batcert.uncertainty.propagate`).
 """
 
 from __future__ import annotations
@@ -108,13 +108,3 @@ def drawn_result(protocol: ProtocolSpec, nominal: RunResult, at_nominal: Fit,
     values = np.array([c.metric_value for c in nominal.conditions]) + (
         drawn.metric_at(x) - at_nominal.metric_at(located))
     return float(AGGREGATES[protocol.aggregate].combine(values)), x
-
-
-def final_steps(bench: Bench, protocol: ProtocolSpec, locations: np.ndarray) -> Steps:
-    """Steps that solve ``bench``'s bat at ``locations`` [m from pivot], (n,), and return the
-    aggregated result: the check of :func:`drawn_result` against impacts at the draw's
-    points."""
-    p = protocol
-    conds = conditions_from_spec(p.conditions, bench.built.model.length, p.pivot)
-    ((final, _),) = yield [bench.request(conds, np.asarray(locations)[:, None])]
-    return float(AGGREGATES[p.aggregate].combine(METRICS[p.metric].value(final)[:, 0]))

@@ -257,6 +257,9 @@ def run(bat, protocols, samples, seed, engine, out_dir, formats, no_reports, as_
     if seed is not None and samples is None:
         from batcert.errors import UsageProblem
         raise UsageProblem("--seed needs --uncertainty N")
+    if samples is not None:
+        from batcert.commands.run import check_uncertainty
+        check_uncertainty(loaded, inputs, samples, seed)
     with console.progress("running") as bar:
         results = run_bat(loaded, inputs, engine, on_step=_stepper(bar))
     console.log(f"engine {engine}: " + "; ".join(f"{k} {v}" for k, v in

@@ -19,6 +19,15 @@ def run(bat: LoadedBat, protocols: list[ProtocolInputs], engine: str = "flexible
                          on_step=on_step)
 
 
+def check_uncertainty(bat: LoadedBat, protocols: list[ProtocolInputs], samples: int,
+                      seed: int | None = None) -> None:
+    """Before anything runs: the files state an uncertainty and its draws are possible
+    (:func:`batcert.uncertainty.propagate.draws`)."""
+    from batcert.uncertainty.propagate import DEFAULT_SEED, draws
+    draws(bat.built.spec, [p.ball for p in protocols], samples,
+          DEFAULT_SEED if seed is None else seed)
+
+
 def with_uncertainty(bat: LoadedBat, protocols: list[ProtocolInputs], results: list[RunResult],
                      samples: int, seed: int | None = None, engine: str = "flexible",
                      on_progress=None, **engine_options) -> list[RunResult]:

@@ -21,6 +21,7 @@ import numpy as np
 from batcert.errors import InputError, Problem
 from batcert.specs.ball import BallSpec
 from batcert.specs.bat import BatSpec
+from batcert.units import si_unit
 
 # the measured-block fields that may carry an uncertainty, with their dimension
 BAT_FIELDS = {"mass": "mass", "balance_point": "length", "cg": "length", "moi": "moi",
@@ -111,8 +112,9 @@ def draw(inputs: list[StatedInput], samples: int, seed: int) -> np.ndarray:
         low, high = float(values.min()), float(values.max())
         if low <= 0 or (s.dimension is None and high > 1):
             worst = low if low <= 0 else high
+            unit = f" {si_unit(s.dimension)}" if s.dimension else ""
             problems.append(Problem(s.path, s.line, s.field, f"the stated uncertainty draws "
-                                    f"{worst:.4g} (SI) in {samples} samples (seed {seed}), "
+                                    f"{worst:.4g}{unit} in {samples} draws (seed {seed}), "
                                     "which is not a possible value: state a smaller "
                                     "uncertainty"))
     if problems:

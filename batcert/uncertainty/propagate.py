@@ -40,6 +40,7 @@ from batcert.results.run import InputUncertainty, PredictedUncertainty, RunResul
 from batcert.runner.runner import Bench, decide, drive, run_protocols
 from batcert.runner.sampled import drawn_result, fit_steps
 from batcert.specs.ball import BallSpec
+from batcert.specs.bat import BatSpec
 from batcert.specs.protocol import ProtocolSpec
 from batcert.specs.resolve import display_path
 from batcert.uncertainty.inputs import StatedInput, draw, sampled, stated_inputs
@@ -70,12 +71,7 @@ def monte_carlo(built: BuiltBat, jobs: list[Job], engine: Engine, samples: int,
     uncertainties of ``built``'s bat file and the jobs' ball files, one
     :class:`PredictedUncertainty` per job. ``on_progress(draws_done, draws)``."""
     balls = [j.ball for j in jobs]
-    inputs = stated_inputs(built.spec, balls)
-    if not inputs:
-        raise NoStatedUncertainty(
-            f"--uncertainty: neither {display_path(built.spec.path)} nor the ball file states an "
-            "uncertainty; give one with the value, e.g. 'mass: 863 g +/- 1 g' (docs/uncertainty.md)")
-    z = draw(inputs, samples, seed)
+    inputs, z = draws(built.spec, balls, samples, seed)
     reducer = _Reducer(built, engine)
     nominal = drive([fit_steps(b, j.protocol, j.nominal) for b, j in zip(
         _benches(built, jobs, engine, inputs, np.zeros(len(inputs)), reducer, -1), jobs,
@@ -109,6 +105,19 @@ def monte_carlo(built: BuiltBat, jobs: list[Job], engine: Engine, samples: int,
                        for n in range(len(jobs))] for i in range(samples)]).max(axis=0)
     return [_summary(j, inputs, z, values[:, k], seed, float(error[k]), len(checked),
                      float(shift[k]), reducer.method) for k, j in enumerate(jobs)]
+
+
+def draws(bat: BatSpec, balls: list[BallSpec], samples: int, seed: int
+          ) -> tuple[list[StatedInput], np.ndarray]:
+    """The stated inputs of ``bat`` and ``balls`` and their draws (:func:`draw`); refuses files
+    that state no uncertainty (:class:`NoStatedUncertainty`) and draws of impossible values
+    (an :class:`InputError`), so that a command can check before it runs anything."""
+    inputs = stated_inputs(bat, balls)
+    if not inputs:
+        raise NoStatedUncertainty(
+            f"--uncertainty: neither {display_path(bat.path)} nor the ball file states an "
+            "uncertainty; give one with the value, e.g. 'mass: 863 g +/- 1 g' (docs/uncertainty.md)")
+    return inputs, draw(inputs, samples, seed)
 
 
 CHECKED = 4  # draws solved again by the full run (the check of the reductions)

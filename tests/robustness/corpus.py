@@ -1299,6 +1299,58 @@ def lab_data() -> None:
         expect="invalid", main="session.yaml", files={"hits.csv": HITS})
 
 
+def uncertainty() -> None:
+    """Stated uncertainties ('+/-') that are malformed, hostile or too large for their value,
+    run through validate and `run --uncertainty`."""
+    c = "8-uncertainty"
+    bat_cmds = [["validate", "{f}"], ["run", "{f}", "-p", "ncaa-bbcor", "--uncertainty", "20",
+                                      "--json", "--out", "{out}"]]
+    ball_cmds = [["validate", "{f}"], ["run", "ash-34", "-p", "{d}/proto.yaml", "--uncertainty",
+                                       "20", "--out", "{out}"]]
+    mass = "  mass: 906 g\n"
+    for cid, new, expect, desc in [
+        ("unc-mass-u-inf", "  mass: 906 g +/- 1e309 g\n", "invalid", "an infinite uncertainty"),
+        ("unc-mass-u-nan", "  mass: 906 g +/- nan g\n", "invalid", "a NaN uncertainty"),
+        ("unc-mass-u-negative", "  mass: 906 g +/- -1 g\n", "invalid", "a negative uncertainty"),
+        ("unc-mass-u-wrong-unit", "  mass: 906 g +/- 1 m\n", "invalid", "an uncertainty in metres"),
+        ("unc-mass-u-missing", "  mass: 906 g +/-\n", "invalid", "'+/-' and nothing after"),
+        ("unc-mass-only-u", "  mass: +/- 1 g\n", "invalid", "an uncertainty without a value"),
+        ("unc-mass-u-twice", "  mass: 906 g +/- 1 g +/- 1 g\n", "invalid", "'+/-' twice"),
+        ("unc-mass-dist-typo", "  mass: 906 g +/- 1 g (uniformm)\n", "invalid",
+         "an unknown distribution"),
+        ("unc-mass-u-wide", "  mass: 906 g +/- 900 g\n", "either",
+         "an uncertainty that draws masses below zero"),
+        ("unc-mass-u-zero", "  mass: 906 g +/- 0 g\n", "either",
+         "a zero uncertainty (nothing to draw)"),
+        ("unc-mass-unicode", "  mass: 906 g \u00b1 1 g (uniform)\n", "valid",
+         "'\u00b1' and a uniform distribution"),
+    ]:
+        mod(cid, c, desc, "solid", (mass, new), expect=expect, commands=bat_cmds)
+    mod("unc-moi-u-wide", c, "an MOI uncertainty whose draws cannot be reconciled", "solid",
+        ("  moi: 0.209 kg*m^2", "  moi: 0.209 kg*m^2 +/- 0.03 kg*m^2"), expect="either",
+        commands=bat_cmds)
+    mod("unc-length-pm", c, "'+/-' on a field that takes none (length)", "solid",
+        ("length: 860 mm", "length: 860 mm +/- 1 mm"), expect="invalid", commands=bat_cmds)
+    mod("unc-wall-mixed", c, "wall stations with a normal and a uniform uncertainty", "hollow",
+        ("  - [22 in, 2.7 mm]\n  - [860 mm, 2.7 mm]",
+         "  - [22 in, 2.7 mm +/- 0.05 mm]\n  - [860 mm, 2.7 mm +/- 0.05 mm (uniform)]"),
+        expect="either", commands=bat_cmds)
+    for cid, new, expect, desc in [
+        ("unc-cor-u-large", "  - [85 ft/s, 0.546 +/- 0.9]", "either",
+         "a COR uncertainty that draws CORs above 1"),
+        ("unc-cor-u-text", "  - [85 ft/s, 0.546 +/- abc]", "invalid", "a COR uncertainty that "
+         "is no number"),
+        ("unc-cor-u-unit", "  - [85 ft/s, 0.546 +/- 0.01 m]", "invalid", "a COR uncertainty "
+         "with a unit"),
+        ("unc-cor-uniform", "  - [85 ft/s, 0.546 +/- 0.02 (uniform)]", "valid",
+         "a uniform COR uncertainty"),
+    ]:
+        mod(cid, c, desc, "ball", ("  - [85 ft/s, 0.546]", new), expect=expect,
+            commands=ball_cmds)
+    mod("unc-ball-mass-u-wrong-unit", c, "a ball mass uncertainty in metres", "ball",
+        ("mass: 5.125 oz", "mass: 5.125 oz +/- 1 m"), expect="invalid", commands=ball_cmds)
+
+
 def build() -> list[Case]:
     """Every case, with unique ids."""
     ALL.clear()
@@ -1311,6 +1363,7 @@ def build() -> list[Case]:
     unit_typos()
     references()
     missing_and_types()
+    uncertainty()
     ids = [c.id for c in ALL]
     assert len(ids) == len(set(ids)), "case ids must be unique"
     return list(ALL)

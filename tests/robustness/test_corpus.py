@@ -183,7 +183,7 @@ def run_case(case: corpus.Case, where: Path, monkeypatch) -> list[str]:
 def test_the_corpus_covers_every_kind():
     kinds = {c.category for c in CASES}
     assert {"1-yaml", "2-numbers", "3-degenerate", "4-text", "5-units", "6-refs",
-            "7-types"} <= kinds
+            "7-types", "8-uncertainty"} <= kinds
     assert len(CASES) >= 300
 
 

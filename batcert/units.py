@@ -148,6 +148,9 @@ def parse_uncertain(value: object, dimension: str) -> float:
     if u_text is None:
         return v
     u_text, distribution = read_spread(value, u_text)
+    if not u_text.strip():
+        raise UnitError(f"cannot read {value!r}: give the uncertainty before its distribution, "
+                        f"e.g. '863 g +/- 0.5 g ({distribution})'")
     unit = (_NUMBER_UNIT.match(str(nominal)).group(2) or "").strip()  # type: ignore[union-attr]
     if _BARE_NUMBER.match(u_text):
         u_text = f"{u_text} {unit}"

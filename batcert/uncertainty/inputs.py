@@ -13,6 +13,7 @@ uncertainties (a drawn tube's wall gauge, a ball lot's liveliness).
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -79,9 +80,9 @@ def stated_inputs(bat: BatSpec, balls: list[BallSpec]) -> list[StatedInput]:
                                    _distribution(walls, bat.path, line, "wall")))
     seen: set[str] = set()
     for ball in balls:
-        if ball.path in seen:
+        if _same_file(ball.path) in seen:  # one ball file, however its path is spelled
             continue
-        seen.add(ball.path)
+        seen.add(_same_file(ball.path))
         b = ball.model
         if _u(b.mass) > 0:
             out.append(StatedInput("ball", ball.path, "mass", ball.source.line("mass"), "mass",
@@ -128,7 +129,7 @@ def sampled(bat: BatSpec, balls: list[BallSpec], inputs: list[StatedInput], z: n
     (``z``: one row of :func:`draw`); inputs without an uncertainty keep their values."""
     measured = bat.measured
     wall = bat.wall
-    models = {b.path: b.model for b in balls}
+    models = {_same_file(b.path): b.model for b in balls}
     for s, k in zip(inputs, z, strict=True):
         values = tuple(float(v + k * u) for v, u in zip(s.nominal, s.u, strict=True))
         if s.file == "bat" and s.field == "wall":
@@ -138,8 +139,15 @@ def sampled(bat: BatSpec, balls: list[BallSpec], inputs: list[StatedInput], z: n
             changes: dict[str, Any] = {s.field.split(".", 1)[1]: values[0]}
             measured = replace(measured, **changes)
         elif s.field == "mass":
-            models[s.path] = replace(models[s.path], mass=values[0])
+            key = _same_file(s.path)
+            models[key] = replace(models[key], mass=values[0])
         else:
-            models[s.path] = replace(models[s.path], cor_values=values)
+            key = _same_file(s.path)
+            models[key] = replace(models[key], cor_values=values)
     return (replace(bat, measured=measured, wall=wall),
-            [replace(b, model=models[b.path]) for b in balls])
+            [replace(b, model=models[_same_file(b.path)]) for b in balls])
+
+
+def _same_file(path: str) -> str:
+    """One key per file, however its path is spelled (relative, ``..``, links)."""
+    return os.path.realpath(path)

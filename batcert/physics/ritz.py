@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from batcert.physics.batmodel import BatModel
-from batcert.physics.beam import assemble, element_matrices, free_dofs, mesh_nodes, rigid_modes
+from batcert.physics.beam import assemble, element_matrices, free_dofs, rigid_modes
 from batcert.physics.modes import Modes, compute_modes, eigenpairs, full_vectors
 from batcert.physics.residual import nodal_flexibility
 
@@ -32,10 +32,7 @@ def ritz_modes(bat: BatModel, basis: Modes, flexibility: np.ndarray | None,
     taken as unchanged), so the residual compliance needs no new static solve; with None (a
     draw that changes the stiffness) the residual compliance solves for it.
     """
-    z_points = [basis.pivot] + [zp for zp, _ in bat.point_masses]
-    fe = assemble(bat, mesh_nodes(bat, 1, z_points))
-    if fe.z.shape != basis.z.shape or not np.allclose(fe.z, basis.z, rtol=0, atol=1e-12):
-        raise ValueError("ritz_modes needs the same mesh as the basis modes")
+    fe = assemble(bat, basis.z)  # the basis's mesh (its refinement, pivot and point masses)
     keep = free_dofs(fe, basis.support, basis.pivot)
     rigid = rigid_modes(fe, basis.support, basis.pivot)
     nr = basis.n_rigid

@@ -100,7 +100,14 @@ def drawn_result(protocol: ProtocolSpec, nominal: RunResult, at_nominal: Fit,
     rule = IMPACT_RULES[protocol.impact_location.rule]
     located = at_nominal.centre
     if drawn.locator is not None:
-        x = located + (drawn.vertex() - at_nominal.vertex())
+        # a maximum on the window's edge (the true one lies outside) stays on the edge, as
+        # the full search leaves it; so does a curve with no maximum near the point
+        held = np.array([c.at_window_edge for c in nominal.conditions]) | (
+            at_nominal.locator[:, 0] >= 0) | (drawn.locator[:, 0] >= 0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            moved = located + (drawn.vertex() - at_nominal.vertex())
+        window = nominal.conditions[0].sweep.impact_location
+        x = np.where(held, located, np.clip(moved, window[0], window[-1]))
     elif rule.name == "cop":
         x = located + (drawn.cop - at_nominal.cop)
     else:

@@ -99,7 +99,7 @@ def drawn_result(protocol: ProtocolSpec, nominal: RunResult, at_nominal: Fit,
     (n,), from its :class:`Fit` and the nominal bat's (module notes)."""
     rule = IMPACT_RULES[protocol.impact_location.rule]
     located = at_nominal.centre
-    if drawn.locator is not None:
+    if drawn.locator is not None and at_nominal.locator is not None:
         # a maximum on the window's edge (the true one lies outside) stays on the edge, as
         # the full search leaves it; so does a curve with no maximum near the point
         held = np.array([c.at_window_edge for c in nominal.conditions]) | (

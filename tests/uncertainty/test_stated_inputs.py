@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -22,31 +23,15 @@ from batcert.specs.bat import MEASURED_SCHEMA, load_bat
 from batcert.uncertainty.inputs import BAT_FIELDS, StatedInput, draw, sampled, stated_inputs
 from batcert.units import OUNCE, Uncertain
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/, for the shared helper
+from edits import edited, line_of  # noqa: E402
+
 REPO = Path(__file__).resolve().parents[2]
 ASH = REPO / "bats" / "ash-34.yaml"
 ALUMINIUM = REPO / "bats" / "aluminium-34.yaml"
 BALL = REPO / "protocols" / "balls" / "collegiate-baseball.yaml"
 SQRT3 = math.sqrt(3.0)
 REL = 1e-12  # exact unit factors: only float rounding remains
-
-
-def edited(tmp_path: Path, source: Path, *changes: tuple[str, str]) -> Path:
-    """``source`` with each (old, new) replaced once, written to tmp_path."""
-    text = source.read_text(encoding="utf-8")
-    for old, new in changes:
-        assert text.count(old) == 1, f"{old!r} is not once in {source.name}"
-        text = text.replace(old, new)
-    path = tmp_path / source.name
-    path.write_text(text, encoding="utf-8")
-    return path
-
-
-def line_of(path: Path, start: str) -> int:
-    """1-based number of the only line of ``path`` that starts with ``start``."""
-    hits = [i for i, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
-            if line.startswith(start)]
-    assert len(hits) == 1, (start, hits)
-    return hits[0]
 
 
 # ---------------------------------------------------------------- what is stated

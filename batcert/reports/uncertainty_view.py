@@ -14,7 +14,9 @@ from batcert.reports.table import Table
 from batcert.results.run import InputUncertainty, PredictedUncertainty, RunResult
 from batcert.units import Display, show
 
-BINS = 30  # histogram bins of the draws
+def bins(samples: int) -> int:
+    """Histogram bins of the draws: about sqrt(N) / 2, from 8 to 30 (15 for N = 1000)."""
+    return min(30, max(8, round(math.sqrt(samples) / 2)))
 
 
 def _digits(u: float) -> int:
@@ -51,7 +53,7 @@ def inputs_table(result: RunResult) -> Table:
         value, spread = input_value(i)
         where = f"{i.path}:{i.line}" if i.line else i.path
         rows.append([f"{i.file} {i.field}", where, value, spread,
-                     "normal (± = u)" if i.distribution == "normal" else "uniform (± = half-width)",
+                     i.distribution,
                      fmt.metric_spread(i.sensitivity, result.metric, signed_=True),
                      f"{100 * i.variance_share:.1f} %"])
     return Table(["Input", "File:line", "Value", "±", "Distribution",
@@ -99,20 +101,24 @@ def uncertainty_view(result: RunResult) -> dict[str, Any] | None:
     if u is None:
         return None
     return {"sentence": summary_sentence(result), "inputs": inputs_table(result),
+            "legend": "± is the standard uncertainty of a normal distribution and the "
+                      "half-width of a uniform one (whose standard uncertainty is ±/√3); the "
+                      "effect per u is the least-squares slope of the result on the input's "
+                      "draws, in standard uncertainties.",
             "checks": checks_table(result), "method": u.method, "note": u.note}
 
 
 def histogram(u: PredictedUncertainty) -> tuple[list[float], list[float]]:
-    """Bin centres and the share of draws per bin [-] (:data:`BINS` bins over the draws)."""
+    """Bin centres and the share of draws per bin [-] (:func:`bins` bins over the draws)."""
     lo, hi = u.minimum, u.maximum
     if hi <= lo:
         return [lo], [1.0]
-    width = (hi - lo) / BINS
-    counts = [0] * BINS
+    n = bins(len(u.values))
+    width = (hi - lo) / n
+    counts = [0] * n
     for x in u.values:
-        counts[min(int((x - lo) / width), BINS - 1)] += 1
-    return ([lo + (k + 0.5) * width for k in range(BINS)],
-            [c / len(u.values) for c in counts])
+        counts[min(int((x - lo) / width), n - 1)] += 1
+    return ([lo + (k + 0.5) * width for k in range(n)], [c / len(u.values) for c in counts])
 
 
 def uncertainty_figure(result: RunResult) -> LineFigure | None:
@@ -128,5 +134,5 @@ def uncertainty_figure(result: RunResult) -> LineFigure | None:
         lines.append(svg.VLine(result.limit + result.tolerance, "limit", svg.PALETTE[1]))
     return LineFigure("uncertainty", f"{name} over {u.samples} draws of the input "
                       "uncertainties", f"{name} [-]", "Share of draws per bin [-]",
-                      [svg.Series("draws", x, y)], vlines=lines,
+                      [svg.Series("draws", x, y)], vlines=lines, hlines=[(0.0, "")],
                       caption="Frequency polygon of the Monte Carlo draws.")

@@ -14,6 +14,7 @@ from batcert.reports.table import Table
 from batcert.results.run import InputUncertainty, PredictedUncertainty, RunResult
 from batcert.units import Display, show
 
+
 def bins(samples: int) -> int:
     """Histogram bins of the draws: about sqrt(N) / 2, from 8 to 30 (15 for N = 1000)."""
     return min(30, max(8, round(math.sqrt(samples) / 2)))

@@ -9,10 +9,11 @@ import numpy as np
 
 from batcert import __version__
 from batcert.commands.inputs import load_protocol_any
-from batcert.lab.certify import DECISION_RULES, MC_DRAWS, certify, decide
+from batcert.lab.certify import DECISION_RULES, MC_DRAWS, certify, guard_band
 from batcert.lab.session import load_lab_session
 from batcert.results.lab import LabHit, LabLocation, LabResult
 from batcert.results.serialise import utc_now
+from batcert.runner.runner import decide
 from batcert.specs.resolve import display_path
 
 
@@ -79,7 +80,7 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
         session = load_lab_session(session_path)
     limit = p.limit.max + p.limit.tolerance if p.limit else None
     red, c = certify(session, p, limit)
-    margin, verdict = decide(c.value, limit, c.expanded, decision_rule)
+    margin, verdict = decide(c.value, p.limit, guard_band(decision_rule, c.expanded))
     h = session.hits
     tip = session.built.model.length - session.spec.pivot
     used = set(c.used)

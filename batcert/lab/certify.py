@@ -265,11 +265,8 @@ DECISION_RULES = {
 }
 
 
-def decide(value: float | None, limit: float | None, expanded: float, rule: str
-           ) -> tuple[float | None, str | None]:
-    """Margin and verdict under a decision rule (None without a value or a limit)."""
-    if value is None or limit is None:
-        return None, None
-    acceptance = limit - (expanded if rule == "guarded" else 0.0)
-    margin = acceptance - value
-    return margin, "pass" if margin >= 0 else "fail"
+def guard_band(rule: str, expanded: float) -> float:
+    """The guard band a decision rule takes off the limit: none for simple acceptance, the
+    expanded uncertainty for guarded acceptance (the verdict itself:
+    :func:`batcert.runner.runner.decide`)."""
+    return expanded if rule == "guarded" else 0.0

@@ -230,11 +230,14 @@ def _warnings(protocol: ProtocolSpec, conds: list[Condition], choice: Choice,
     return out
 
 
-def decide(value: float, limit: LimitSpec | None) -> tuple[float | None, str | None]:
-    """Margin (limit + tolerance - value) and verdict; (None, None) without a limit."""
-    if limit is None:
+def decide(value: float | None, limit: LimitSpec | None, guard: float = 0.0
+           ) -> tuple[float | None, str | None]:
+    """Margin (limit + tolerance - guard - value) and verdict; (None, None) without a value or
+    a limit. ``guard`` is a guard band taken off the limit (guarded acceptance: the expanded
+    uncertainty, :data:`batcert.lab.certify.DECISION_RULES`); 0 is simple acceptance."""
+    if value is None or limit is None:
         return None, None
-    margin = limit.max + limit.tolerance - value
+    margin = limit.max + limit.tolerance - guard - value
     return margin, "pass" if margin >= 0 else "fail"
 
 

@@ -13,8 +13,10 @@ import pytest
 
 from batcert.commands.inputs import load_protocol_any
 from batcert.commands.reduce import run_reduce
-from batcert.lab.certify import certify, decide
+from batcert.lab.certify import certify, guard_band
 from batcert.lab.session import load_lab_session
+from batcert.runner.runner import decide
+from batcert.specs.protocol import LimitSpec
 
 LAB = Path(__file__).resolve().parents[2] / "examples" / "lab"
 INCH = 0.0254
@@ -87,10 +89,11 @@ def test_type_b_sensitivities_by_finite_differences(bbcor):
 
 
 def test_decision_rules():
-    assert decide(0.497, 0.5, 0.004, "simple") == (pytest.approx(0.003), "pass")
-    assert decide(0.497, 0.5, 0.004, "guarded") == (pytest.approx(-0.001), "fail")
-    assert decide(None, 0.5, 0.0, "simple") == (None, None)
-    assert decide(0.6, None, 0.0, "simple") == (None, None)
+    limit = LimitSpec(0.5, 0.0, None)
+    assert decide(0.497, limit, guard_band("simple", 0.004)) == (pytest.approx(0.003), "pass")
+    assert decide(0.497, limit, guard_band("guarded", 0.004)) == (pytest.approx(-0.001), "fail")
+    assert decide(None, limit) == (None, None)
+    assert decide(0.6, None) == (None, None)
 
 
 def test_too_few_consecutive_valid_hits(bbcor, tmp_path):

@@ -93,21 +93,23 @@ def lab_stem(result: Any) -> str:
     return _stem("lab", result.protocol, Path(result.session_path).stem)
 
 
+# the report kind of each result type, by class name: its stem and its renderers
+# (markdown.<name>_markdown, html.<name>_html); the result modules are not imported to look a
+# result up, which keeps a run's start-up from loading every other kind
+_KINDS: dict[str, tuple[Callable[[Any], str], str]] = {
+    "RunResult": (run_stem, "run"), "ComparisonResult": (comparison_stem, "comparison"),
+    "LeagueResult": (league_stem, "league"), "SweepResult": (sweep_stem, "sweep"),
+    "LabResult": (lab_stem, "lab")}
+
+
 def _kind(result: Any) -> ReportKind:
     """The report kind of a result (renderers imported lazily to keep start-up fast)."""
     from batcert.reports import html, markdown
-    from batcert.results.compare import ComparisonResult
-    from batcert.results.lab import LabResult
-    from batcert.results.league import LeagueResult
-    from batcert.results.run import RunResult
-    from batcert.results.sweep import SweepResult
-    kinds = {RunResult: ReportKind(run_stem, markdown.run_markdown, html.run_html),
-             ComparisonResult: ReportKind(comparison_stem, markdown.comparison_markdown,
-                                          html.comparison_html),
-             LeagueResult: ReportKind(league_stem, markdown.league_markdown, html.league_html),
-             SweepResult: ReportKind(sweep_stem, markdown.sweep_markdown, html.sweep_html),
-             LabResult: ReportKind(lab_stem, markdown.lab_markdown, html.lab_html)}
-    return kinds[type(result)]
+    cls = type(result)
+    if not cls.__module__.startswith("batcert.results.") or cls.__name__ not in _KINDS:
+        raise KeyError(cls)
+    stem, name = _KINDS[cls.__name__]
+    return ReportKind(stem, getattr(markdown, f"{name}_markdown"), getattr(html, f"{name}_html"))
 
 
 def report_stem(result: Any) -> str:

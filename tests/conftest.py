@@ -14,6 +14,14 @@ REPO = Path(__file__).resolve().parents[1]
 FIXTURES = REPO / "tests" / "fixtures"
 
 
+@pytest.fixture(autouse=True, scope="session")
+def _template_cache(tmp_path_factory):
+    """The compiled-template cache of the tests' runs (batcert.reports.templates) lives in a
+    temporary directory, not in the user's ~/.cache."""
+    import os
+    os.environ["BATCERT_CACHE_DIR"] = str(tmp_path_factory.mktemp("batcert-cache"))
+
+
 @pytest.fixture
 def repo_root() -> Path:
     """The checkout's top directory (holds bats/ and protocols/)."""

@@ -158,6 +158,27 @@ def mesh_nodes(bat: BatModel, refine: int = 1, extra_points=()) -> np.ndarray:
     return nodes
 
 
+def element_slices(bat: BatModel, nodes: np.ndarray) -> np.ndarray:
+    """The slice each element of the mesh ``nodes`` takes its properties from: the slice
+    holding its midpoint, (elements,)."""
+    z = np.asarray(nodes, dtype=float)
+    edges = np.asarray(bat.z_edges, dtype=float)
+    mid = 0.5 * (z[1:] + z[:-1])
+    return np.clip(np.searchsorted(edges, mid, side="right") - 1, 0, edges.size - 2)
+
+
+def element_dofs(nodes: np.ndarray) -> np.ndarray:
+    """Each element's DOFs ``(w_1, theta_1, w_2, theta_2)`` on the global vector, (e, 4)."""
+    return 2 * np.arange(np.asarray(nodes).size - 1)[:, None] + np.arange(4)[None, :]
+
+
+def point_mass_dofs(nodes: np.ndarray, positions: np.ndarray) -> np.ndarray:
+    """The transverse DOF each point mass at ``positions`` [m from knob] is lumped on: the
+    nearest node's, (points,)."""
+    z = np.asarray(nodes, dtype=float)
+    return 2 * np.abs(z[None, :] - np.asarray(positions, dtype=float)[:, None]).argmin(axis=1)
+
+
 def assemble(bat: BatModel, nodes: np.ndarray) -> _FiniteElements:
     """Global stiffness and mass matrices of ``bat`` on the mesh ``nodes`` (point masses included).
 
@@ -167,17 +188,15 @@ def assemble(bat: BatModel, nodes: np.ndarray) -> _FiniteElements:
     inertia of their own.
     """
     z = np.asarray(nodes, dtype=float)
-    edges = np.asarray(bat.z_edges, dtype=float)
-    mid = 0.5 * (z[1:] + z[:-1])
-    s = np.clip(np.searchsorted(edges, mid, side="right") - 1, 0, edges.size - 2)
+    s = element_slices(bat, z)
     k_e, m_e = element_matrices(np.diff(z), bat.bending_stiffness[s], bat.shear_stiffness[s],
                                 bat.linear_density[s], bat.rotary_inertia[s])
     n = 2 * z.size
-    dofs = 2 * np.arange(z.size - 1)[:, None] + np.arange(4)[None, :]  # (e, 4)
+    dofs = element_dofs(z)
     rows = np.broadcast_to(dofs[:, :, None], k_e.shape)
     cols = np.broadcast_to(dofs[:, None, :], k_e.shape)
     pm = np.asarray(bat.point_masses, dtype=float).reshape(-1, 2)
-    j = 2 * np.abs(z[None, :] - pm[:, :1]).argmin(axis=1)
+    j = point_mass_dofs(z, pm[:, 0])
     stiffness, mass = np.zeros((n, n)), np.zeros((n, n))  # dense: a bat has a few hundred DOFs
     np.add.at(stiffness, (rows, cols), k_e)
     np.add.at(mass, (rows, cols), m_e)

@@ -109,13 +109,19 @@ def compute_modes(bat: BatModel, support: str, pivot: float, n_modes: int = 24,
                                n_rigid, n_bend)
         full = np.zeros((fe.z.size * 2, n_bend))
         full[keep] = vec
-        full *= np.where(full[-2] < 0, -1.0, 1.0)
+        full = tip_positive(full)
         vectors.append(full)
         omega.append(np.sqrt(np.clip(lam, 0.0, None)))
     phi = np.concatenate(vectors, axis=1).T
     return Modes(support=support, pivot=float(pivot), z=fe.z, omega=np.concatenate(omega),
                  shapes=np.ascontiguousarray(phi[:, 0::2]),
                  rotations=np.ascontiguousarray(phi[:, 1::2]), n_rigid=n_rigid)
+
+
+def tip_positive(vectors: np.ndarray) -> np.ndarray:
+    """Mode vectors on the full DOF vector, (2 n_nodes, n), each signed so that its transverse
+    displacement at the tip (the last node's ``w``) is positive: the modes' sign convention."""
+    return vectors * np.where(vectors[-2] < 0, -1.0, 1.0)
 
 
 def full_vectors(modes: Modes) -> np.ndarray:

@@ -11,8 +11,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from batcert.physics.batmodel import BatModel
-from batcert.physics.beam import assemble, element_matrices, free_dofs, rigid_modes
-from batcert.physics.modes import Modes, compute_modes, eigenpairs, full_vectors
+from batcert.physics.beam import (
+    assemble,
+    element_dofs,
+    element_matrices,
+    element_slices,
+    free_dofs,
+    point_mass_dofs,
+    rigid_modes,
+)
+from batcert.physics.modes import Modes, compute_modes, eigenpairs, full_vectors, tip_positive
 from batcert.physics.residual import nodal_flexibility
 
 
@@ -42,7 +50,7 @@ def ritz_modes(bat: BatModel, basis: Modes, flexibility: np.ndarray | None,
     lam, y = eigenpairs(0.5 * (k + k.T), 0.5 * (m + m.T), nr, v.shape[1] - nr)
     bend = np.zeros((2 * fe.z.size, lam.size))
     bend[keep] = v @ y
-    bend *= np.where(bend[-2] < 0, -1.0, 1.0)
+    bend = tip_positive(bend)
     return _with_flexibility(basis, flexibility, rigid, bend,
                              np.sqrt(np.clip(lam, 0.0, None)), n_modes)
 
@@ -53,8 +61,9 @@ class RitzBasis:
     flexibility (the basis), and the projections that make a draw whose stiffness is the
     nominal one cost a few small matrix products.
 
-    The basis vectors are the nominal bat's bending modes and the rigid motions' fixed shapes
-    (rotation about the pin; free: translation and rotation about the knob). A draw that only
+    The basis vectors are the nominal bat's bending modes and its rigid modes (rotation about
+    the pin; free: translation and rotation about the CG), whose span holds every draw's rigid
+    motions. A draw that only
     redistributes mass changes ``M`` alone, and ``M`` is linear in each element's
     ``linear_density`` and ``rotary_inertia`` and in the point masses: the projected
     ``W^T M W`` is a weighted sum of per-element projections (``unit_translation``,
@@ -80,31 +89,21 @@ def ritz_basis(bat: BatModel, support: str, pivot: float, n_basis: int,
     basis = compute_modes(bat, support, pivot, n_basis, refine)
     flexibility = nodal_flexibility(bat, basis)
     z = basis.z
-    n = z.size
-    rigid = []
-    if support == "free":
-        trans = np.zeros(2 * n)
-        trans[0::2] = 1.0
-        rigid.append(trans)
-    rot = np.zeros(2 * n)
-    z0 = z[int(np.argmin(np.abs(z - pivot)))] if support == "pinned" else 0.0
-    rot[0::2], rot[1::2] = z - z0, 1.0
-    rigid.append(rot)
-    w = np.concatenate([np.stack(rigid, axis=1), full_vectors(basis)[:, basis.n_rigid:]], axis=1)
     fe = assemble(bat, z)
-    edges = np.asarray(bat.z_edges, dtype=float)
-    mid = 0.5 * (z[1:] + z[:-1])
-    s = np.clip(np.searchsorted(edges, mid, side="right") - 1, 0, edges.size - 2)
+    # the nominal rigid modes: fixed shapes (a draw only rescales them, or moves the free
+    # bat's centre of rotation within their span)
+    w = np.concatenate([rigid_modes(fe, support, pivot), full_vectors(basis)[:, basis.n_rigid:]],
+                       axis=1)
+    s = element_slices(bat, z)
     length = np.diff(z)
     ones, zeros = np.ones(length.size), np.zeros(length.size)
     _, m_t = element_matrices(length, bat.bending_stiffness[s], bat.shear_stiffness[s], ones,
                               zeros)
     _, m_r = element_matrices(length, bat.bending_stiffness[s], bat.shear_stiffness[s], zeros,
                               ones)
-    dofs = 2 * np.arange(length.size)[:, None] + np.arange(4)[None, :]
-    we = w[dofs]  # (e, 4, n_w)
+    we = w[element_dofs(z)]  # (e, 4, n_w)
     pm = np.asarray(bat.point_masses, dtype=float).reshape(-1, 2)
-    rows = 2 * np.abs(z[None, :] - pm[:, :1]).argmin(axis=1)
+    rows = point_mass_dofs(z, pm[:, 0])
     project = "eai,eab,ebj->eij"
     return RitzBasis(basis, flexibility, np.array(bat.bending_stiffness, dtype=float),
                      np.array(bat.shear_stiffness, dtype=float), tuple(pm[:, 0]), w,
@@ -137,8 +136,7 @@ def reduced_modes(rb: RitzBasis, bat: BatModel, n_modes: int) -> Modes:
         z_cg = m[0, 1] / m[0, 0]
         rot = e[:, 1] - z_cg * e[:, 0]
         rigid_y = np.stack([e[:, 0] / np.sqrt(m[0, 0]), rot / np.sqrt(rot @ m @ rot)], axis=1)
-    bend = rb.vectors @ y
-    bend *= np.where(bend[-2] < 0, -1.0, 1.0)
+    bend = tip_positive(rb.vectors @ y)
     omega_all = np.sqrt(np.clip(lam, 0.0, None))
     return _with_flexibility(basis, rb.flexibility, rb.vectors @ rigid_y, bend, omega_all,
                              n_modes)
@@ -153,13 +151,16 @@ def _with_flexibility(basis: Modes, flexibility: np.ndarray | None, rigid: np.nd
     if flexibility is not None:
         old = basis.shapes[nr:]
         shapes_all = bend[0::2]
-        w_old = np.where(basis.omega[nr:] > 0, 1.0 / np.where(basis.omega[nr:] > 0,
-                                                             basis.omega[nr:], 1.0) ** 2, 0.0)
-        w_new = np.where(omega_all > 0, 1.0 / np.where(omega_all > 0, omega_all, 1.0) ** 2, 0.0)
-        flex = flexibility - (old.T * w_old) @ old + (shapes_all * w_new) @ shapes_all.T
+        flex = (flexibility - (old.T * _compliance(basis.omega[nr:])) @ old
+                + (shapes_all * _compliance(omega_all)) @ shapes_all.T)
         flex = 0.5 * (flex + flex.T)
     phi = np.concatenate([rigid, bend[:, :n_modes]], axis=1).T
     return Modes(support=basis.support, pivot=basis.pivot, z=basis.z,
                  omega=np.concatenate([np.zeros(nr), omega_all[:n_modes]]),
                  shapes=np.ascontiguousarray(phi[:, 0::2]),
                  rotations=np.ascontiguousarray(phi[:, 1::2]), n_rigid=nr, flexibility=flex)
+
+
+def _compliance(omega: np.ndarray) -> np.ndarray:
+    """``1 / omega^2`` of mass-normalised modes, 0 for a zero frequency (a rigid mode)."""
+    return np.where(omega > 0, 1.0 / np.where(omega > 0, omega, 1.0) ** 2, 0.0)

@@ -91,6 +91,14 @@ def metric_value(value: float | None, metric: str, signed_: bool = False) -> Dis
     return Display(signed(f"{_nz(value):{sign}.{digits}f}"), None)
 
 
+def two_significant(value: float, at_least: int = 0) -> int:
+    """Decimals that show ``value`` to two significant digits (at least ``at_least``; 0 for
+    zero)."""
+    if not value:
+        return at_least
+    return max(at_least, 1 - math.floor(math.log10(abs(value))))
+
+
 def metric_spread(value: float | None, metric: str, signed_: bool = False) -> Display:
     """A spread or change of a protocol metric (a standard deviation, a sensitivity), to two
     significant digits, with the metric's unit."""
@@ -99,7 +107,7 @@ def metric_spread(value: float | None, metric: str, signed_: bool = False) -> Di
     if value and abs(value) < 1e-6:  # a rounding-level difference
         text = signed(f"{value:{'+' if signed_ else ''}.1e}")
         return Display(text + (" m/s" if metric == "exit-speed" else ""), None)
-    digits = max(0, 1 - math.floor(math.log10(abs(value)))) if value else 0
+    digits = two_significant(value)
     text = signed(f"{_nz(value):{'+' if signed_ else ''}.{digits}f}")
     if metric == "exit-speed":
         return Display(f"{text} m/s", signed(f"{to_us(value, 'speed'):.{digits}f} mph"))

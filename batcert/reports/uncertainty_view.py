@@ -20,15 +20,10 @@ def bins(samples: int) -> int:
     return min(30, max(8, round(math.sqrt(samples) / 2)))
 
 
-def _digits(u: float) -> int:
-    """Decimals that show ``u`` [SI] to two significant digits (at least three)."""
-    return max(3, 1 - math.floor(math.log10(u))) if u > 0 else 3
-
-
 def _amount(value: float, u: float, dimension: str | None, us: bool = True) -> Display:
     if dimension is None:
-        return Display(f"{value:.{_digits(u)}f}", None)
-    shown = show(value, dimension, _digits(u))
+        return Display(f"{value:.{fmt.two_significant(u, 3)}f}", None)
+    shown = show(value, dimension, fmt.two_significant(u, 3))
     return shown if us else Display(shown.si, None)
 
 
@@ -67,7 +62,7 @@ def summary_sentence(result: RunResult) -> str:
     assert u is not None
     m = result.metric
     spread = fmt.metric_spread(u.standard_deviation, m).si
-    digits = len(spread.split(" ")[0].split(".")[-1]) if "." in spread else 0
+    digits = fmt.two_significant(u.standard_deviation)  # the values to the spread's decimals
     v = lambda x: f"{x:.{digits}f}" + (" m/s" if m == "exit-speed" else "")  # noqa: E731
     text = (f"Over {u.samples} Monte Carlo draws of the stated input uncertainties (seed "
             f"{u.seed}), {fmt.metric_word(m)} = {v(u.mean)} with standard deviation "

@@ -78,7 +78,7 @@ def monte_carlo(built: BuiltBat, jobs: list[Job], engine: Engine, samples: int,
         _benches(built, jobs, engine, inputs, np.zeros(len(inputs)), reducer, -1), jobs,
         strict=True)], engine)
     values = np.zeros((samples, len(jobs)))
-    points = np.zeros((samples, len(jobs)), dtype=object)
+    shift = np.zeros(len(jobs))  # the largest move of a draw's impact point [m]
     if on_progress:
         on_progress(0, samples)
     # a drawn wall is a new barrel (about 0.25 s): smaller chunks keep the progress moving
@@ -91,8 +91,9 @@ def monte_carlo(built: BuiltBat, jobs: list[Job], engine: Engine, samples: int,
                                                start + i), jobs, strict=True)], engine)
         for k, fit in enumerate(fits):
             i, n = divmod(k, len(jobs))
-            values[start + i, n], points[start + i, n] = drawn_result(
-                jobs[n].protocol, jobs[n].nominal, nominal[n], fit)
+            values[start + i, n], x = drawn_result(jobs[n].protocol, jobs[n].nominal,
+                                                   nominal[n], fit)
+            shift[n] = max(shift[n], float(np.abs(x - nominal[n].centre).max()))
         if on_progress:
             on_progress(start + rows.shape[0], samples)
     checked = _checked_draws(values)
@@ -104,8 +105,6 @@ def monte_carlo(built: BuiltBat, jobs: list[Job], engine: Engine, samples: int,
             [(drawn, j.protocol, ball) for j, ball in zip(jobs, drawn_balls, strict=True)],
             engine, created="")]
     error = np.abs(exact - values[checked]).max(axis=0)
-    shift = np.array([[np.abs(points[i, n] - nominal[n].centre).max()
-                       for n in range(len(jobs))] for i in range(samples)]).max(axis=0)
     return [_summary(j, inputs, z, values[:, k], seed, float(error[k]), len(checked),
                      float(shift[k]), reducer.method) for k, j in enumerate(jobs)]
 

@@ -35,6 +35,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import scipy.linalg
 
+from batcert.physics.banded import inverse_band, lower_band
 from batcert.physics.batmodel import BatModel
 from batcert.physics.shell import (
     Assembler,
@@ -53,6 +54,10 @@ DYNAMIC_ORDERS = 6  # highest order whose modes join the engine (0, 2..6)
 # against 40 orders on aluminium-34; 1e-7 at game speeds)
 STATIC_ORDERS = 24
 MAX_FREQUENCY = 10_000.0  # modes above this [Hz] respond quasi-statically (the engine default)
+# the longest contact patch along the bat [m]: twice the largest ball radius that a ball spec
+# accepts (100 mm, batcert.specs.ball); the stored flexibility covers every pair of unknowns
+# that one patch can load together, and no others
+PATCH_SPAN = 0.2
 
 
 def barrel_shell(bat: BatModel) -> ShellOfRevolution | None:
@@ -94,13 +99,15 @@ class BarrelModes:
     Loads and read-outs of the normal displacement only touch the ``u_z``, ``u_r`` and ``W'``
     unknowns of the nodes, so each order is reduced to them ("W space", ``3 N`` unknowns for
     ``N`` nodes,
-    the same for every order): ``green[n]`` is the static flexibility between them (order 0
-    with inertia relief), ``shapes[n]`` the kept modes' ``u_z``, ``u_r``, ``W'`` at the nodes.
+    the same for every order): ``green[o]`` is the static flexibility between them (order 0
+    with inertia relief) within the band that one contact patch reads (:data:`PATCH_SPAN`),
+    ``green[o, i, d]`` between unknowns ``i`` and ``i + d``; ``shapes`` holds the kept modes'
+    ``u_z``, ``u_r``, ``W'`` at the nodes.
     """
 
     shell: ShellOfRevolution
     orders: tuple[int, ...]  # 0, 2 .. static_orders
-    green: np.ndarray  # (orders, 3N, 3N), times green_scale
+    green: np.ndarray  # (orders, 3N, band + 1) upper band, times green_scale
     omega: np.ndarray  # kept modes, order by order [rad/s], (m,)
     mode_orders: np.ndarray  # the order of each kept mode, (m,)
     shapes: np.ndarray  # W space shapes of the kept modes, mass-normalised, (3N, m)
@@ -132,35 +139,68 @@ def _w_space(system: HarmonicSystem, n_nodes: int) -> np.ndarray:
     return (base + slots[None, :]).ravel()
 
 
-def _banded(a: np.ndarray, upper: int) -> np.ndarray:
-    """Upper banded storage of a symmetric matrix for ``scipy.linalg.cholesky_banded``."""
-    ab = np.zeros((upper + 1, a.shape[0]))
-    for k in range(upper + 1):
-        ab[upper - k, k:] = np.diagonal(a, k)
-    return ab
+def _span_nodes(z: np.ndarray) -> int:
+    """The most node steps one contact patch of :data:`PATCH_SPAN` can reach: a patch starting
+    in element ``a`` ends before the first node at or past ``z[a + 1] + PATCH_SPAN``, and
+    loads the nodes ``a`` up to that one."""
+    last = np.minimum(np.searchsorted(z, z[1:] + PATCH_SPAN), z.size - 1)
+    return int((last - np.arange(z.size - 1)).max())
 
 
-def _green(system: HarmonicSystem, w_dofs: np.ndarray) -> np.ndarray:
-    """Static flexibility between the W-space unknowns of one order (banded Cholesky)."""
-    position = np.full(w_dofs.max() + system.node_dofs + 1, -1)
-    position[system.free] = np.arange(system.free.size)
-    rows = position[w_dofs]
-    load = np.zeros((system.free.size, w_dofs.size))
-    ok = rows >= 0  # u_r of a closed end is held: no flexibility there
-    load[rows[ok], np.flatnonzero(ok)] = 1.0
-    upper = 2 * system.node_dofs - 1
-    factor = scipy.linalg.cholesky_banded(_banded(system.stiffness, upper), check_finite=False)
-    if system.rigid is None:
-        x = scipy.linalg.cho_solve_banded((factor, False), load, check_finite=False)
-    else:  # inertia relief against the axial translation (see shell.static_solve)
-        mr = system.mass @ system.rigid
-        x = scipy.linalg.cho_solve_banded((factor, False),
-                                          load - np.outer(mr, system.rigid @ load),
-                                          check_finite=False)
-        x -= np.outer(system.rigid, mr @ x)
-    green = np.zeros((w_dofs.size, w_dofs.size))
-    green[ok] = x[rows[ok]]
-    return 0.5 * (green + green.T)
+def _w_band(inverse: np.ndarray, bandwidth: int, free: np.ndarray, w_dofs: np.ndarray,
+            width: int, correction=None) -> np.ndarray:
+    """The W-space band of the flexibility of one or several orders from the band of their
+    inverse on the free dofs (:func:`~batcert.physics.banded.inverse_band`, half-bandwidth
+    ``bandwidth`` below): ``out[o, i, d] = K^-1[f_i, f_(i+d)]`` for ``d = 0..width``, zero where
+    an unknown is held (``u_r`` of a closed end) or past the end. ``correction(fi, fj)`` (free
+    positions, same shape) is added where given (order 0's inertia relief)."""
+    position = np.full(w_dofs.max() + 1, -1)
+    position[free] = np.arange(free.size)
+    rows = position[w_dofs]  # free position of each W-space unknown, -1 if held
+    size = w_dofs.size
+    i = np.arange(size)[:, None]
+    j = i + np.arange(width + 1)[None, :]
+    fi = np.broadcast_to(rows[:, None], j.shape)
+    fj = rows[np.minimum(j, size - 1)]
+    ok = (j < size) & (fi >= 0) & (fj >= 0)
+    offset = np.where(ok, fj - fi, 0)  # W space and free dofs run in the same order
+    if np.any(offset > inverse.shape[-1] - bandwidth - 1):
+        raise ValueError("the band of the inverse does not cover the patch's unknowns")
+    fi, fj = np.where(ok, fi, 0), np.where(ok, fj, 0)
+    out = inverse[:, fi, bandwidth + offset]
+    if correction is not None:
+        out = out + correction(fi, fj)
+    return np.where(ok, out, 0.0)
+
+
+def _green_bands(assembler: Assembler, orders: list[int], n_nodes: int) -> np.ndarray:
+    """Static flexibility between the W-space unknowns of each order (order 0 with inertia
+    relief), the band that one contact patch reads: ``green[o, i, d] = G_o[i, i + d]`` for
+    ``d = 0..width``, shape (orders, 3N, width + 1); see :mod:`batcert.physics.banded`."""
+    span = _span_nodes(assembler.shell.z)
+    width = 3 * span + 2  # a patch loads nodes a .. a + span, three W-space unknowns each
+    green = np.zeros((len(orders), 3 * n_nodes, width + 1))
+    higher = [i for i, n in enumerate(orders) if n]
+    if higher:
+        bands, free = assembler.stiffness_bands([orders[i] for i in higher])
+        factor = np.stack([scipy.linalg.cholesky_banded(ab, lower=True, check_finite=False)
+                           for ab in bands])
+        w_dofs = (5 * np.arange(n_nodes)[:, None] + np.array([0, 3, 4])).ravel()
+        green[higher] = _w_band(inverse_band(factor, 5 * span + 4), 9, free, w_dofs, width)
+    if 0 in orders:  # inertia relief against the axial translation (see shell.static_solve)
+        system = assembler.system(0, support=True)
+        assert system.rigid is not None
+        ab = lower_band(system.stiffness, 5)
+        factor = scipy.linalg.cholesky_banded(ab, lower=True, check_finite=False)
+        r = system.rigid
+        mr = system.mass @ r
+        y = scipy.linalg.cho_solve_banded((factor, True), mr, check_finite=False)  # K^-1 M r
+        c = float(mr @ y)
+        w_dofs = (3 * np.arange(n_nodes)[:, None] + np.arange(3)).ravel()
+        green[orders.index(0)] = _w_band(
+            inverse_band(factor[None], 3 * span + 2), 5, system.free, w_dofs, width,
+            lambda fi, fj: c * r[fi] * r[fj] - r[fi] * y[fj] - y[fi] * r[fj])[0]
+    return green
 
 
 def compute_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
@@ -173,18 +213,15 @@ def compute_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
         return None
     assembler = Assembler(shell)
     n_nodes = shell.z.size
-    green, omega, orders, shapes = [], [], [], []
-    for n in _orders(static_orders):
-        supported = assembler.system(n, support=True)
-        w_dofs = _w_space(supported, n_nodes)
-        green.append(_green(supported, w_dofs))
-        if n <= dynamic_orders:
-            free = supported if n else assembler.system(0)
-            modes = harmonic_modes(shell, n, max_frequency, free)
-            omega.append(modes.omega)
-            orders.append(np.full(modes.omega.size, n))
-            shapes.append(modes.vectors[w_dofs])
-    return BarrelModes(shell, tuple(_orders(static_orders)), np.stack(green),
+    omega, orders, shapes = [], [], []
+    for n in _orders(dynamic_orders):
+        system = assembler.system(n)
+        modes = harmonic_modes(shell, n, max_frequency, system)
+        omega.append(modes.omega)
+        orders.append(np.full(modes.omega.size, n))
+        shapes.append(modes.vectors[_w_space(system, n_nodes)])
+    green = _green_bands(assembler, _orders(static_orders), n_nodes)
+    return BarrelModes(shell, tuple(_orders(static_orders)), green,
                        np.concatenate(omega), np.concatenate(orders),
                        np.concatenate(shapes, axis=1), float(max_frequency))
 
@@ -347,17 +384,21 @@ def _patch_flexibility(green: np.ndarray, g: np.ndarray) -> np.ndarray:
 
 def _patch_flexibility_of(green: np.ndarray, g: np.ndarray) -> np.ndarray:
     nz = g != 0
-    width = g.shape[1]
+    size = g.shape[1]
     lo = np.argmax(nz, axis=1)
-    hi = width - np.argmax(nz[:, ::-1], axis=1)
+    hi = size - np.argmax(nz[:, ::-1], axis=1)
     q = np.zeros((green.shape[0], g.shape[0]))
     bands, which = np.unique(np.stack([lo, hi], axis=1), axis=0, return_inverse=True)
     for k, (a, b) in enumerate(bands):
         rows = np.flatnonzero(which.ravel() == k)
         if not nz[rows[0]].any():
             continue  # a patch off the wall
+        if b - a > green.shape[2]:
+            raise ValueError(f"a contact patch is longer than {PATCH_SPAN} m")
+        i, j = np.meshgrid(np.arange(b - a), np.arange(b - a), indexing="ij")
+        block = green[:, a + np.minimum(i, j), np.abs(i - j)]  # (orders, b - a, b - a)
         gb = g[rows, a:b]
-        q[:, rows] = (np.matmul(gb, green[:, a:b, a:b]) * gb).sum(axis=-1)
+        q[:, rows] = (np.matmul(gb, block) * gb).sum(axis=-1)
     return q
 
 

@@ -53,6 +53,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg
 
+from batcert.physics.banded import lower_band
+
 _GX, _GW = np.polynomial.legendre.leggauss(4)
 _XI = 0.5 * (_GX + 1.0)
 _WXI = 0.5 * _GW
@@ -233,20 +235,33 @@ class Assembler:
         for i, a in enumerate(ben):
             for j, b in enumerate(ben):
                 powers[i + j] += np.einsum("eq,eqai,ab,eqbj->eij", cb, a, law, b)
-        self._k = [_global(shell, 5, kp) for kp in powers]
+        # the orders n >= 1 share their free dofs (support only concerns order 0): their
+        # matrices are kept on them
+        self._free, _ = _free_dofs(shell, 1, False)
+        ix = np.ix_(self._free, self._free)
+        self._k = [_global(shell, 5, kp)[ix] for kp in powers]
         rho_t = (shell.density * shell.thickness)[:, None] * wq * r
-        self._m = _global(shell, 5, np.einsum("eq,eqai,eqaj->eij", rho_t, disp, disp))
+        self._m = _global(shell, 5, np.einsum("eq,eqai,eqaj->eij", rho_t, disp, disp))[ix]
+        self._k_bands = lower_band(np.stack(self._k), 9)  # (5, 10, m)
 
     def system(self, n: int, support: bool = False) -> HarmonicSystem:
         """The problem of order ``n`` with the end conditions applied (see :func:`assemble`)."""
         if n == 0:
-            k, m = self._k0, self._m0
-        else:
-            k = self._k[0].copy()
-            for p, kp in enumerate(self._k[1:], start=1):
-                k += float(n) ** p * kp
-            m = self._m
-        return _with_ends(self.shell, n, k, m, support)
+            return _with_ends(self.shell, 0, self._k0, self._m0, support)
+        k = self._k[0].copy()
+        for p, kp in enumerate(self._k[1:], start=1):
+            k += float(n) ** p * kp
+        return _system(n, k, self._m, self._free, 5, None)
+
+    def stiffness_bands(self, orders) -> tuple[np.ndarray, np.ndarray]:
+        """Lower band storage (:func:`batcert.physics.banded.lower_band`) of the stiffness of
+        each order in ``orders`` (all ``>= 1``) on their free dofs, shape (orders, 10, m), and
+        those free dofs (m,); half-bandwidth 9 (two nodes of five unknowns)."""
+        n = np.asarray(orders, dtype=float)
+        if np.any(n < 1):
+            raise ValueError("stiffness_bands serves the orders n >= 1")
+        powers = n[:, None] ** np.arange(5)[None, :]  # (orders, 5)
+        return np.einsum("op,pkm->okm", powers, self._k_bands), self._free
 
 
 def element_matrices(shell: ShellOfRevolution, n: int):
@@ -282,8 +297,11 @@ def assemble(shell: ShellOfRevolution, n: int, support: bool = False) -> Harmoni
     return _with_ends(shell, n, _global(shell, nd, k_e), _global(shell, nd, m_e), support)
 
 
-def _with_ends(shell: ShellOfRevolution, n: int, k: np.ndarray, m: np.ndarray,
-               support: bool) -> HarmonicSystem:
+def _free_dofs(shell: ShellOfRevolution, n: int, support: bool
+               ) -> tuple[np.ndarray, np.ndarray | None]:
+    """The free dofs of order ``n`` (a closed end holds ``u_r`` and, for ``n >= 1``, ``V``; a
+    supported order 0 holds ``u_z`` at the first node) and, for a supported order 0, its axial
+    translation on the full dof vector (else None)."""
     nd = shell.node_dofs(n)
     n_nodes = shell.z.size
     size = nd * n_nodes
@@ -297,13 +315,24 @@ def _with_ends(shell: ShellOfRevolution, n: int, k: np.ndarray, m: np.ndarray,
         translation = np.zeros(size)
         translation[0::nd] = 1.0
         fixed.append(0)
-    free = np.delete(np.arange(size), np.asarray(fixed, dtype=int))
-    m_free = m[np.ix_(free, free)]
+    return np.delete(np.arange(size), np.asarray(fixed, dtype=int)), translation
+
+
+def _system(n: int, k_free: np.ndarray, m_free: np.ndarray, free: np.ndarray, nd: int,
+            translation: np.ndarray | None) -> HarmonicSystem:
+    """A :class:`HarmonicSystem` from matrices already on the free dofs."""
     rigid = None
     if translation is not None:
         t = translation[free]
         rigid = t / np.sqrt(t @ m_free @ t)
-    return HarmonicSystem(n, k[np.ix_(free, free)], m_free, free, nd, w_off, rigid)
+    return HarmonicSystem(n, k_free, m_free, free, nd, 1 if n == 0 else 3, rigid)
+
+
+def _with_ends(shell: ShellOfRevolution, n: int, k: np.ndarray, m: np.ndarray,
+               support: bool) -> HarmonicSystem:
+    free, translation = _free_dofs(shell, n, support)
+    ix = np.ix_(free, free)
+    return _system(n, k[ix], m[ix], free, shell.node_dofs(n), translation)
 
 
 def static_solve(system: HarmonicSystem, factor, load: np.ndarray) -> np.ndarray:

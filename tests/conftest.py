@@ -15,9 +15,9 @@ FIXTURES = REPO / "tests" / "fixtures"
 
 
 @pytest.fixture(autouse=True, scope="session")
-def _template_cache(tmp_path_factory):
-    """The compiled-template cache of the tests' runs (batcert.reports.templates) lives in a
-    temporary directory, not in the user's ~/.cache."""
+def _cache_dir(tmp_path_factory):
+    """The cache directory of the tests' runs (batcert.cache: compiled report templates,
+    barrel shells) is a temporary directory, not the user's ~/.cache."""
     import os
     os.environ["BATCERT_CACHE_DIR"] = str(tmp_path_factory.mktemp("batcert-cache"))
 

@@ -33,8 +33,8 @@ from collections import OrderedDict
 from dataclasses import dataclass, replace
 
 import numpy as np
-import scipy.linalg
 
+from batcert.physics import stores
 from batcert.physics.banded import inverse_band, lower_band
 from batcert.physics.batmodel import BatModel
 from batcert.physics.shell import (
@@ -177,6 +177,8 @@ def _green_bands(assembler: Assembler, orders: list[int], n_nodes: int) -> np.nd
     """Static flexibility between the W-space unknowns of each order (order 0 with inertia
     relief), the band that one contact patch reads: ``green[o, i, d] = G_o[i, i + d]`` for
     ``d = 0..width``, shape (orders, 3N, width + 1); see :mod:`batcert.physics.banded`."""
+    import scipy.linalg  # ~0.15 s to import: only where a wall is computed
+
     span = _span_nodes(assembler.shell.z)
     width = 3 * span + 2  # a patch loads nodes a .. a + span, three W-space unknowns each
     green = np.zeros((len(orders), 3 * n_nodes, width + 1))
@@ -272,9 +274,14 @@ def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
     if base is not None:
         _CACHE.move_to_end(key)
     else:
-        nominal = replace(bat, linear_density=relative, barrel_stiffness_scale=1.0,
-                          barrel_mass_scale=1.0)
-        base = compute_barrel_modes(nominal, cut, dynamic_orders, static_orders)
+        store, stored = stores.get("barrel"), _stored_key(key)
+        base = _from_arrays(store.load(stored), cut) if store else None
+        if base is None:
+            nominal = replace(bat, linear_density=relative, barrel_stiffness_scale=1.0,
+                              barrel_mass_scale=1.0)
+            base = compute_barrel_modes(nominal, cut, dynamic_orders, static_orders)
+            if store and base is not None:
+                store.save(stored, _to_arrays(base))
         _CACHE[key] = base
         while len(_CACHE) > 8:
             _CACHE.popitem(last=False)
@@ -283,6 +290,40 @@ def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
     shell = barrel_shell(bat)
     assert shell is not None
     return base.scaled(shell, s_k, s_m, float(max_frequency))
+
+
+def _stored_key(key: tuple) -> str:
+    """The store's name of the nominal wall ``key`` (the store adds the code's fingerprint)."""
+    return hashlib.sha256(repr(key).encode()).hexdigest()
+
+
+def _to_arrays(modes: BarrelModes) -> dict[str, np.ndarray]:
+    s = modes.shell
+    return {"z": s.z, "r": s.r, "thickness": s.thickness, "density": s.density,
+            "youngs_modulus": s.youngs_modulus, "poisson_ratio": np.array(s.poisson_ratio),
+            "ends": np.array(s.ends), "orders": np.array(modes.orders), "green": modes.green,
+            "omega": modes.omega, "mode_orders": modes.mode_orders, "shapes": modes.shapes,
+            "max_frequency": np.array(modes.max_frequency),
+            "green_scale": np.array(modes.green_scale)}
+
+
+def _from_arrays(a: dict | None, cut: float) -> BarrelModes | None:
+    """A stored wall, or None if ``a`` is missing or does not hold one computed to ``cut``."""
+    try:
+        shell = ShellOfRevolution(a["z"], a["r"], a["thickness"], a["density"],
+                                  a["youngs_modulus"], float(a["poisson_ratio"]),
+                                  tuple(str(e) for e in a["ends"]))
+        modes = BarrelModes(shell, tuple(int(n) for n in a["orders"]), a["green"], a["omega"],
+                            a["mode_orders"], a["shapes"], float(a["max_frequency"]),
+                            float(a["green_scale"]))
+        size = 3 * shell.z.size
+        ok = (modes.green.ndim == 3 and modes.green.shape[:2] == (len(modes.orders), size)
+              and modes.shapes.shape == (size, modes.omega.size)
+              and modes.mode_orders.shape == modes.omega.shape
+              and modes.max_frequency == cut)
+    except (TypeError, KeyError, ValueError, IndexError):
+        return None
+    return modes if ok else None
 
 
 def clear_barrel_cache() -> None:
@@ -426,6 +467,8 @@ def hoop_frequency(bat: BatModel) -> float | None:
 
 def _hoop_frequency_direct(bat: BatModel) -> float | None:
     """:func:`hoop_frequency` from the lowest eight n = 2 modes, solved afresh."""
+    import scipy.linalg
+
     shell = barrel_shell(bat)
     if shell is None:
         return None
@@ -451,6 +494,8 @@ def compression_stiffness(bat: BatModel, position: float, platen_width: float) -
     the beam's bending, order 1, cancels). Shell theory only: the local crushing under a
     narrow platen edge is not modelled.
     """
+    import scipy.linalg
+
     shell = barrel_shell(bat)
     if shell is None:
         raise ValueError("a solid bat has no barrel to compress")

@@ -1,7 +1,7 @@
 """The Jinja environment over the package's report templates (works from an installed wheel).
 
 Compiling the templates costs about 50 ms, a fifth of a run's time, so their compiled form is
-kept in a cache directory (:func:`cache_dir`: ``$BATCERT_CACHE_DIR``, else
+kept in the cache directory (:func:`batcert.cache.cache_dir`: ``$BATCERT_CACHE_DIR``, else
 ``$XDG_CACHE_HOME/batcert`` or ``~/.cache/batcert``) and reused while the template's source is
 unchanged (Jinja's bytecode cache checks it). The cache is an optimisation only: a directory
 that cannot be made, read or written is passed over in silence, and deleting it is always safe.
@@ -9,26 +9,13 @@ that cannot be made, read or written is passed over in silence, and deleting it 
 
 from __future__ import annotations
 
-import os
 from functools import lru_cache
-from pathlib import Path
 from typing import TYPE_CHECKING
+
+from batcert.cache import cache_dir
 
 if TYPE_CHECKING:
     import jinja2
-
-
-def cache_dir() -> Path | None:
-    """Where compiled templates are kept (made if missing), or None where that cannot be."""
-    root = os.environ.get("BATCERT_CACHE_DIR") or os.path.join(
-        os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
-        "batcert")
-    path = Path(root) / "templates"  # entries are keyed by their source's checksum
-    try:
-        path.mkdir(parents=True, exist_ok=True, mode=0o700)
-    except OSError:
-        return None
-    return path if os.access(path, os.W_OK | os.X_OK) else None
 
 
 def _bytecode_cache():
@@ -50,7 +37,7 @@ def _bytecode_cache():
             except OSError:
                 pass
 
-    where = cache_dir()
+    where = cache_dir("templates")  # entries are keyed by their source's checksum
     return None if where is None else QuietCache(str(where))
 
 

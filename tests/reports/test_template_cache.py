@@ -7,6 +7,7 @@ import os
 
 import pytest
 
+from batcert.cache import cache_dir
 from batcert.reports import templates
 
 
@@ -41,7 +42,7 @@ def test_an_unwritable_cache_is_passed_over(fresh, tmp_path):
     else:
         fresh.mkdir()
         fresh.chmod(0o500)
-    assert templates.cache_dir() is None
+    assert cache_dir("templates") is None
     assert "font" in render()
 
 

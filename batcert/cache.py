@@ -1,0 +1,137 @@
+"""batcert's cache directory: results that are costly to rebuild and cheap to keep, reused by
+later runs. Everything in it is an optimisation: a directory that cannot be made, read or
+written is passed over in silence, a damaged entry is recomputed, and deleting the directory is
+always safe.
+
+Where: ``$BATCERT_CACHE_DIR``, else ``$XDG_CACHE_HOME/batcert`` or ``~/.cache/batcert``, one
+folder per kind (``templates``: compiled report templates; ``barrels``: hollow bats' barrel
+shells, :mod:`batcert.physics.barrel`).
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+
+def cache_dir(kind: str) -> Path | None:
+    """The folder of one kind of cache entry (made if missing), or None where that cannot be."""
+    root = os.environ.get("BATCERT_CACHE_DIR") or os.path.join(
+        os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
+        "batcert")
+    path = Path(root) / kind
+    try:
+        path.mkdir(parents=True, exist_ok=True, mode=0o700)
+    except OSError:
+        return None
+    return path if os.access(path, os.W_OK | os.X_OK) else None
+
+
+def code_fingerprint(modules) -> str | None:
+    """A checksum of the code of ``modules`` (import names): a module's source, or for a
+    package its ``version.py`` (a library's release) else its ``__init__.py``; None if one
+    cannot be found or read."""
+    import hashlib
+    import importlib.util
+
+    h = hashlib.sha256()
+    for name in modules:
+        try:
+            spec = importlib.util.find_spec(name)
+        except (ImportError, ValueError):
+            return None
+        if spec is None or spec.origin is None:
+            return None
+        origin = Path(spec.origin)
+        if spec.submodule_search_locations is not None and origin.with_name("version.py").is_file():
+            origin = origin.with_name("version.py")
+        try:
+            h.update(name.encode() + b"\0" + origin.read_bytes())
+        except OSError:
+            return None
+    return h.hexdigest()
+
+
+class ArrayStore:
+    """Named sets of numpy arrays kept as ``.npz`` files in :func:`cache_dir` ``(kind)``,
+    least recently used first out once they hold more than ``limit`` bytes.
+
+    An entry's file name folds the caller's key with :func:`code_fingerprint` of ``code``, so
+    that a changed computation never reads what an older one stored (no code, no store).
+    ``load`` returns None for a missing, unreadable or damaged entry; ``save`` writes through
+    a temporary file and a rename (a reader never sees half an entry) and passes over any
+    failure (a full disk, a read-only directory).
+    """
+
+    def __init__(self, kind: str, code=(), limit: int = 256 * 2**20):
+        self.kind, self.code, self.limit = kind, tuple(code), int(limit)
+        self._fingerprint: str | None = None
+
+    def _path(self, key: str) -> Path | None:
+        if self._fingerprint is None:
+            self._fingerprint = code_fingerprint(self.code) or ""
+        if not self._fingerprint:
+            return None
+        where = cache_dir(self.kind)
+        if where is None:
+            return None
+        import hashlib
+
+        name = hashlib.sha256(f"{key}|{self._fingerprint}".encode()).hexdigest()[:32]
+        return where / f"{name}.npz"
+
+    def load(self, key: str) -> dict | None:
+        import numpy as np
+
+        path = self._path(key)
+        if path is None or not path.is_file():
+            return None
+        try:
+            with open(path, "rb") as f, np.load(f, allow_pickle=False) as data:
+                arrays = {name: data[name] for name in data.files}
+            os.utime(path)  # recently used
+        except Exception:  # noqa: BLE001 - a damaged entry of any kind is only a miss
+            return None
+        return arrays
+
+    def save(self, key: str, arrays: dict) -> None:
+        import numpy as np
+
+        path = self._path(key)
+        if path is None:
+            return
+        tmp = None
+        try:
+            fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".", suffix=".npz.tmp")
+            with os.fdopen(fd, "wb") as f:
+                np.savez(f, **arrays)
+            os.replace(tmp, path)
+            tmp = None
+            self._trim(path.parent)
+        except OSError:
+            pass
+        finally:
+            if tmp is not None:
+                try:
+                    os.unlink(tmp)
+                except OSError:
+                    pass
+
+    def _trim(self, where: Path) -> None:
+        entries = []
+        for p in where.glob("*.npz"):
+            try:
+                st = p.stat()
+            except OSError:
+                continue
+            entries.append((st.st_mtime, st.st_size, p))
+        total = sum(size for _, size, _ in entries)
+        for _, size, p in sorted(entries):
+            if total <= self.limit:
+                break
+            try:
+                p.unlink()
+                total -= size
+            except OSError:
+                pass

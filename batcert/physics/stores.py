@@ -1,0 +1,40 @@
+"""Where computations that are costly to repeat may be kept between processes.
+
+The physics reads and writes no files. A front end (the command line) installs a store here,
+an object with ``load(key) -> dict of numpy arrays | None`` and ``save(key, arrays)``
+(:class:`batcert.cache.ArrayStore`); without one, results are kept in the process only. A
+stored result is valid only for the code that computed it: :data:`CODE` names, per kind, the
+modules whose source (or, for a library, release) the store must fold into its keys.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Protocol
+
+
+class Store(Protocol):
+    def load(self, key: str) -> dict[str, Any] | None: ...
+
+    def save(self, key: str, arrays: dict[str, Any]) -> None: ...
+
+
+CODE = {
+    # batcert.physics.barrel.cached_barrel_modes: a hollow bat's nominal wall
+    "barrel": ("batcert.physics.barrel", "batcert.physics.shell", "batcert.physics.banded",
+               "numpy", "scipy"),
+}
+
+_STORES: dict[str, Store] = {}
+
+
+def use(kind: str, store: Store | None) -> None:
+    """Keep results of ``kind`` in ``store`` (None: in the process only)."""
+    if store is None:
+        _STORES.pop(kind, None)
+    else:
+        _STORES[kind] = store
+
+
+def get(kind: str) -> Store | None:
+    """The store installed for ``kind``, or None."""
+    return _STORES.get(kind)

@@ -309,10 +309,15 @@ def _to_arrays(modes: BarrelModes) -> dict[str, np.ndarray]:
 
 def _from_arrays(a: dict | None, cut: float) -> BarrelModes | None:
     """A stored wall, or None if ``a`` is missing or does not hold one computed to ``cut``."""
+    if a is None:
+        return None
     try:
+        ends = tuple(str(e) for e in a["ends"])
+        if len(ends) != 2:
+            return None
         shell = ShellOfRevolution(a["z"], a["r"], a["thickness"], a["density"],
                                   a["youngs_modulus"], float(a["poisson_ratio"]),
-                                  tuple(str(e) for e in a["ends"]))
+                                  (ends[0], ends[1]))
         modes = BarrelModes(shell, tuple(int(n) for n in a["orders"]), a["green"], a["omega"],
                             a["mode_orders"], a["shapes"], float(a["max_frequency"]),
                             float(a["green_scale"]))

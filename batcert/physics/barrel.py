@@ -393,8 +393,7 @@ def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray
     """
     g = _w_load(barrel.shell, points, weights)  # (p, 3N)
     angles, which = np.unique(half_angle, return_inverse=True)  # often one patch size
-    c = circumferential_factor(np.asarray(barrel.orders)[:, None],
-                               angles[None, :])[:, which.ravel()]  # (orders, p)
+    c = _factors(barrel.orders, angles)[:, which.ravel()]  # (orders, p)
     static = barrel.green_scale * (c**2 * _patch_flexibility(barrel.green, g)).sum(axis=0)
     order_row = {n: i for i, n in enumerate(barrel.orders)}
     factor = c[[order_row[n] for n in barrel.mode_orders]].T  # (p, m)
@@ -402,6 +401,26 @@ def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray
     modal = (gain**2 / barrel.omega**2).sum(axis=1)
     return BarrelResponse(barrel.omega, gain, np.clip(static - modal, 0.0, None), static,
                           barrel.mode_orders)
+
+
+_FACTOR_CACHE: OrderedDict[tuple, np.ndarray] = OrderedDict()
+
+
+def _factors(orders: tuple[int, ...], angles: np.ndarray) -> np.ndarray:
+    """:func:`~batcert.physics.shell.circumferential_factor` of every order at every angle,
+    (orders, angles); memoised (LRU): a barrel's variants and the runner's repeated points
+    ask for the same patch sizes."""
+    key = (orders, angles.tobytes())
+    hit = _FACTOR_CACHE.get(key)
+    if hit is not None:
+        _FACTOR_CACHE.move_to_end(key)
+        return hit
+    c = circumferential_factor(np.asarray(orders)[:, None], angles[None, :])
+    c.setflags(write=False)
+    _FACTOR_CACHE[key] = c
+    while len(_FACTOR_CACHE) > 64:
+        _FACTOR_CACHE.popitem(last=False)
+    return c
 
 
 _PATCH_CACHE: OrderedDict[tuple, tuple[np.ndarray, np.ndarray]] = OrderedDict()

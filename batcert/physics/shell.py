@@ -406,15 +406,35 @@ def circumferential_factor(n, half_angle) -> np.ndarray:
 
 
 def bessel_j1(x) -> np.ndarray:
-    """The Bessel function ``J_1(x)`` by Bessel's integral ``(1 / 2 pi) int_0^2pi cos(t -
-    x sin t) dt`` with the trapezoidal rule, which for this periodic analytic integrand is
-    exact to rounding once the points outnumber ``|x|`` by a margin (the error is about
-    ``2 J_(M-1)(x)`` for ``M`` points; Trefethen & Weideman, SIAM Rev. 56 (2014) 385, Sec. 4).
-    Pure numpy, so that a barrel's response needs no scipy."""
+    """The Bessel function ``J_1(x)``, pure numpy, so that a barrel's response needs no scipy.
+
+    Miller's backward recurrence ``J_(k-1) = (2k / x) J_k - J_(k+1)`` from an order ``N``
+    well above ``|x|`` (``N >= |x| + 16 + 4 sqrt|x|``, where the neglected ``J_N`` is below
+    rounding) down to 0, normalised by ``J_0 + 2 sum J_2k = 1`` (Abramowitz & Stegun 9.1.46,
+    9.12); rescaled on the way where the unnormalised values grow large. A series for
+    ``|x| < 1e-4``. Accurate to a few ulps of 1 (tested against scipy.special.j1 up to 100).
+    """
     x = np.asarray(x, dtype=float)
-    points = 64 + 2 * int(np.ceil(np.abs(x).max(initial=0.0)))
-    t = 2 * np.pi * np.arange(points) / points
-    return np.cos(t - x[..., None] * np.sin(t)).mean(axis=-1)
+    ax = np.abs(x)
+    top = float(ax.max(initial=0.0))
+    order = 2 * (int(top + 16 + 4 * np.sqrt(top)) // 2 + 1)  # even
+    arg = np.where(ax > 1e-4, ax, 1.0)
+    above, here = np.zeros_like(ax), np.full_like(ax, 1e-300)  # J_(k+1), J_k unnormalised
+    total, j1 = np.zeros_like(ax), np.zeros_like(ax)
+    for k in range(order, 0, -1):
+        here, above = (2 * k / arg) * here - above, here  # J_(k-1)
+        if k == 2:
+            j1 = here.copy()
+        elif k % 2 and k > 1:
+            total += 2 * here  # J_2, J_4 ..
+        if k % 4 == 0:  # four steps grow at most (2 order / 1e-4)^4 < 1e100
+            large = np.abs(here) > 1e200
+            if large.any():
+                scale = np.where(large, 1e-200, 1.0)
+                here, above, total, j1 = here * scale, above * scale, total * scale, j1 * scale
+    total += here  # J_0
+    small = ax / 2 - ax**3 / 16  # J_1 to rounding below 1e-4
+    return np.sign(x) * np.where(ax > 1e-4, j1 / total, small)
 
 
 def ring_frequency(mean_radius, wall, youngs_modulus, density, poisson_ratio, n: int = 2):

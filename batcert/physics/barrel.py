@@ -239,7 +239,9 @@ def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
                         dynamic_orders: int = DYNAMIC_ORDERS,
                         static_orders: int = STATIC_ORDERS) -> BarrelModes | None:
     """:func:`compute_barrel_modes`, memoised on what the wall depends on (LRU, 8 entries of
-    about 14 MB each for a 34 in bat: the static flexibility of 24 orders).
+    about 4 MB each for a 34 in bat: the static flexibility band of 24 orders), and kept in the
+    store of :mod:`batcert.physics.stores` where a front end installed one (the command line's
+    cache directory), which returns the computed arrays exactly.
 
     The wall is computed once at its nominal stiffness and relative density; a calibrated or
     varied barrel (``barrel_stiffness_scale``, ``barrel_mass_scale``) or a uniformly scaled

@@ -102,7 +102,7 @@ def clear_engine_caches() -> None:
     march_module._EXP_CACHE.clear()
     flexible_module._BEAM_CACHE.clear()
     barrel_module._PATCH_CACHE.clear()
-    barrel_module._FACTOR_CACHE.clear()
+    barrel_module._factors_of.cache_clear()
 
 
 def sweeps(engine: FlexibleEngine) -> None:

@@ -31,6 +31,7 @@ import hashlib
 import math
 from collections import OrderedDict
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -134,9 +135,14 @@ def _orders(highest: int) -> list[int]:
 
 def _w_space(system: HarmonicSystem, n_nodes: int) -> np.ndarray:
     """Full-vector dof of ``u_z``, ``u_r``, ``W'`` at every node, in W-space order, (3N,)."""
-    base = system.node_dofs * np.arange(n_nodes)[:, None]
-    slots = np.array([0, system.w_offset, system.w_offset + 1])
-    return (base + slots[None, :]).ravel()
+    return _w_dofs(system.node_dofs, system.w_offset, n_nodes)
+
+
+def _w_dofs(node_dofs: int, w_offset: int, n_nodes: int) -> np.ndarray:
+    """:func:`_w_space` for a layout of ``node_dofs`` unknowns per node with ``u_r`` at
+    ``w_offset`` (``W'`` after it)."""
+    base = node_dofs * np.arange(n_nodes)[:, None]
+    return (base + np.array([0, w_offset, w_offset + 1])[None, :]).ravel()
 
 
 def _span_nodes(z: np.ndarray) -> int:
@@ -180,27 +186,31 @@ def _green_bands(assembler: Assembler, orders: list[int], n_nodes: int) -> np.nd
     import scipy.linalg  # ~0.15 s to import: only where a wall is computed
 
     span = _span_nodes(assembler.shell.z)
-    width = 3 * span + 2  # a patch loads nodes a .. a + span, three W-space unknowns each
-    green = np.zeros((len(orders), 3 * n_nodes, width + 1))
+
+    def reach(node_dofs: int) -> int:  # a patch loads nodes a .. a + span
+        return node_dofs * (span + 1) - 1
+
+    green = np.zeros((len(orders), 3 * n_nodes, reach(3) + 1))
     higher = [i for i, n in enumerate(orders) if n]
-    if higher:
+    if higher:  # five unknowns per node, u_r at slot 3 (shell._layout)
         bands, free = assembler.stiffness_bands([orders[i] for i in higher])
         factor = np.stack([scipy.linalg.cholesky_banded(ab, lower=True, check_finite=False)
                            for ab in bands])
-        w_dofs = (5 * np.arange(n_nodes)[:, None] + np.array([0, 3, 4])).ravel()
-        green[higher] = _w_band(inverse_band(factor, 5 * span + 4), 9, free, w_dofs, width)
+        green[higher] = _w_band(inverse_band(factor, reach(5)), bands.shape[1] - 1, free,
+                                _w_dofs(5, 3, n_nodes), reach(3))
     if 0 in orders:  # inertia relief against the axial translation (see shell.static_solve)
         system = assembler.system(0, support=True)
         assert system.rigid is not None
-        ab = lower_band(system.stiffness, 5)
+        bandwidth = 2 * system.node_dofs - 1
+        ab = lower_band(system.stiffness, bandwidth)
         factor = scipy.linalg.cholesky_banded(ab, lower=True, check_finite=False)
         r = system.rigid
         mr = system.mass @ r
         y = scipy.linalg.cho_solve_banded((factor, True), mr, check_finite=False)  # K^-1 M r
         c = float(mr @ y)
-        w_dofs = (3 * np.arange(n_nodes)[:, None] + np.arange(3)).ravel()
         green[orders.index(0)] = _w_band(
-            inverse_band(factor[None], 3 * span + 2), 5, system.free, w_dofs, width,
+            inverse_band(factor[None], reach(system.node_dofs)), bandwidth, system.free,
+            _w_space(system, n_nodes), reach(3),
             lambda fi, fj: c * r[fi] * r[fj] - r[fi] * y[fj] - y[fi] * r[fj])[0]
     return green
 
@@ -405,23 +415,17 @@ def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray
                           barrel.mode_orders)
 
 
-_FACTOR_CACHE: OrderedDict[tuple, np.ndarray] = OrderedDict()
-
-
 def _factors(orders: tuple[int, ...], angles: np.ndarray) -> np.ndarray:
     """:func:`~batcert.physics.shell.circumferential_factor` of every order at every angle,
-    (orders, angles); memoised (LRU): a barrel's variants and the runner's repeated points
+    (orders, angles), read-only; memoised: a barrel's variants and the runner's repeated points
     ask for the same patch sizes."""
-    key = (orders, angles.tobytes())
-    hit = _FACTOR_CACHE.get(key)
-    if hit is not None:
-        _FACTOR_CACHE.move_to_end(key)
-        return hit
-    c = circumferential_factor(np.asarray(orders)[:, None], angles[None, :])
+    return _factors_of(orders, angles.astype(float).tobytes())
+
+
+@lru_cache(maxsize=64)
+def _factors_of(orders: tuple[int, ...], angles: bytes) -> np.ndarray:
+    c = circumferential_factor(np.asarray(orders)[:, None], np.frombuffer(angles)[None, :])
     c.setflags(write=False)
-    _FACTOR_CACHE[key] = c
-    while len(_FACTOR_CACHE) > 64:
-        _FACTOR_CACHE.popitem(last=False)
     return c
 
 

@@ -352,6 +352,7 @@ def static_solve(system: HarmonicSystem, factor, load: np.ndarray) -> np.ndarray
     load is first equilibrated against the axial translation and the translation removed from
     the answer (inertia relief; Craig & Kurdila 2006, Sec. 11.3)."""
     import scipy.linalg  # hollow bats only: ~0.15 s to import
+
     if system.rigid is None:
         return scipy.linalg.cho_solve(factor, load, check_finite=False)
     mr = system.mass @ system.rigid

@@ -7,6 +7,7 @@ A value that names an existing file (or ends in .yaml/.yml) is taken as a path.
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 _PACKAGE = Path(__file__).resolve().parents[1]
@@ -79,10 +80,19 @@ def display_path(path: str | Path) -> str:
     """How reports name an input file: ``shipped:protocols/proposed.yaml`` for a file that
     ships with batcert (wherever it is installed), else the path as given."""
     p = Path(path).resolve()
+    sub = _shipped_dirs().get(p.parent)
+    return str(path) if sub is None else f"shipped:{sub}/{p.name}"
+
+
+@functools.lru_cache(maxsize=1)
+def _shipped_dirs() -> dict[Path, str]:
+    """The resolved folders that shipped files live in, each with its name in
+    :func:`display_path` (an installed package's first, then a checkout's)."""
+    dirs: dict[Path, str] = {}
     for root in (_PACKAGE / "shipped", _CHECKOUT):
         for subs in KINDS.values():
             for sub in subs:
                 base = (root / sub).resolve()
-                if p.parent == base and base.is_dir():
-                    return f"shipped:{sub}/{p.name}"
-    return str(path)
+                if base.is_dir():
+                    dirs.setdefault(base, sub)
+    return dirs

@@ -182,7 +182,7 @@ def equivalent_wall_speed(compression, mass, k1, alpha):
     k1, alpha : float
         Compression law [N/m^alpha], [-].
     """
-    u = np.clip(np.asarray(compression, dtype=float), 0.0, None)
+    u = np.maximum(np.asarray(compression, dtype=float), 0.0)
     return np.sqrt(2.0 * k1 * u ** (1.0 + alpha) / ((1.0 + alpha) * mass))
 
 

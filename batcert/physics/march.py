@@ -17,6 +17,9 @@ from typing import Any
 import numpy as np
 
 _TINY = 1e-300  # floor of the compression inside log() [m]
+# rows that share their modes are read and forced with one matrix product per run of them when
+# the runs average at least this many rows (else row by row; measured, bench_engine.py)
+_SHARED_ROWS = 16
 
 
 def phi_functions(z):
@@ -67,6 +70,14 @@ class LinearSystem:
         self.ball_mass = np.broadcast_to(np.asarray(self.ball_mass, dtype=float), (n,)).copy()
         if self.blocks is None:
             self.blocks = ((0, n),)
+
+    def rows(self, a: int, b: int) -> LinearSystem:
+        """Rows ``a:b``, the blocks clipped to them."""
+        blocks = tuple((max(s, a) - a, min(e, b) - a) for s, e in self.blocks or ((0, b),)
+                       if s < b and e > a)
+        return LinearSystem(omega=self.omega[a:b], zeta=self.zeta[a:b], gain=self.gain[a:b],
+                            rigid_mass=self.rigid_mass[a:b], ball_mass=self.ball_mass[a:b],
+                            shell_columns=self.shell_columns, blocks=blocks)
 
     @property
     def inv_reduced_mass(self) -> np.ndarray:
@@ -140,30 +151,92 @@ class Separation:
 @dataclass
 class _Coefficients:
     """Per-impact constants of one ETDRK4 step (Cox & Matthews 2002, Eqs. 26-29), row i for
-    impact i. ``R`` reads the free contact-point motion (and the barrel) from ``Z``, ``B`` adds
-    the forcing of a step to ``Z``."""
+    impact i, in the scaled coordinates ``Y = c_y Z`` of :func:`_coefficients`.
+
+    The free contact-point motion is read from ``Y`` and a step's forcing added to it by
+    ``modal``: row by row, or with one matrix product per run of rows that share their modes."""
 
     ka: np.ndarray
     b0: np.ndarray
     c0: np.ndarray
     cb: np.ndarray
     ca: np.ndarray
-    n0: np.ndarray
-    n1: np.ndarray
-    n2: np.ndarray
     w6: np.ndarray
     v6: np.ndarray
     e1: np.ndarray  # (n, K) complex
-    B: np.ndarray  # (n, 3, 2K)
-    R: np.ndarray  # (n, rows, 2K)
+    c_y: np.ndarray  # contact-point displacement per Im(Z): g / omega_d, (n, K)
     beta: np.ndarray
     ab: np.ndarray  # alpha - beta
     lk1: np.ndarray  # log k1 of each impact's ball
     alpha: np.ndarray  # each impact's compression exponent
     shell_factor: np.ndarray  # 1 / (2 (1 - zeta^2)): shell potential energy per Im(Z)^2
+    top_seen: np.ndarray  # the largest compression ``beta`` was last evaluated at [m]
+    im_sum: np.ndarray  # sums the imaginary parts of Y as floats: (0, 1, 0, 1, ...), (2K,)
+    modal: _RowByRow | _Shared  # how the contact point reads and forces Y
 
     def take(self, keep: np.ndarray) -> _Coefficients:
-        return _Coefficients(**{k: v[keep] for k, v in vars(self).items()})
+        kept = {k: v.take(keep) if k == "modal" else v if k == "im_sum" else v[keep]
+                for k, v in vars(self).items()}
+        return _Coefficients(**kept)
+
+
+@dataclass
+class _RowByRow:
+    """Each row's own read-out ``R`` (n, 3, 2K) and forcing ``B`` (n, 3, 2K) of ``Y`` (as
+    floats): free ``y`` after h/2 and h, ``y'`` now; the change of ``Y`` per (F0, Fa + Fb, Fc)."""
+
+    R: np.ndarray
+    B: np.ndarray
+
+    def read(self, y: np.ndarray) -> np.ndarray:
+        """The free contact-point motion read from ``y`` (``Y`` as floats, (n, 2K)), (n, 3)."""
+        return np.matmul(self.R, y[:, :, None])[:, :, 0]
+
+    def push(self, f: np.ndarray) -> np.ndarray:
+        """The change of ``Y`` (as floats, (n, 2K)) that the forces ``f`` (n, 3) make."""
+        return np.matmul(f[:, None, :], self.B)[:, 0, :]
+
+    def take(self, keep: np.ndarray) -> _RowByRow:
+        return _RowByRow(self.R[keep], self.B[keep])
+
+
+@dataclass
+class _Shared:
+    """:class:`_RowByRow` for runs of rows that share their modes (one bat each): one read-out
+    ``R`` (runs, 2K, 3) and forcing ``P`` (runs, 3, 2K) per run, applied with one matrix
+    product per run; the forcing scaled per row by ``scale`` = ``c_y g`` (n, 2K)."""
+
+    R: np.ndarray
+    P: np.ndarray
+    scale: np.ndarray
+    group: np.ndarray  # each row's run, (n,)
+
+    def __post_init__(self) -> None:
+        cuts = np.flatnonzero(np.diff(self.group)) + 1
+        bounds = np.concatenate([[0], cuts, [self.group.size]])
+        self.spans = [(int(a), int(b), int(self.group[a]))
+                      for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
+
+    def read(self, y: np.ndarray) -> np.ndarray:
+        if len(self.spans) == 1:
+            return y @ self.R[self.spans[0][2]]
+        out = np.empty((y.shape[0], 3))
+        for a, b, g in self.spans:
+            np.matmul(y[a:b], self.R[g], out=out[a:b])
+        return out
+
+    def push(self, f: np.ndarray) -> np.ndarray:
+        if len(self.spans) == 1:
+            out = f @ self.P[self.spans[0][2]]
+        else:
+            out = np.empty(self.scale.shape)
+            for a, b, g in self.spans:
+                np.matmul(f[a:b], self.P[g], out=out[a:b])
+        out *= self.scale
+        return out
+
+    def take(self, keep: np.ndarray) -> _Shared:
+        return _Shared(self.R, self.P, self.scale[keep], self.group[keep])
 
 
 @dataclass
@@ -217,7 +290,14 @@ def _exponentials(lam: np.ndarray, h: float) -> tuple[np.ndarray, ...]:
 
 
 def _coefficients(system: LinearSystem, h: float, k1, alpha, beta) -> _Coefficients:
-    """The step constants of every impact (see :func:`march`)."""
+    """The step constants of every impact (see :func:`march`).
+
+    The modal coordinates are kept scaled, ``Y = c_y Z`` with ``c_y = g / omega_d`` the
+    contact-point displacement per ``Im(Z)``: the free motion of the contact point is then
+    ``Im(sum w Y)`` with weights ``w`` (``e^(lam h/2)``, ``e^(lam h)``, ``lam``) that depend on
+    a row's modes only, so that runs of rows sharing them (one bat) read it with one matrix
+    product; the forcing of ``Y``, ``-c_y g (...)``, is that run's matrix scaled per row.
+    """
     om, g = system.omega, system.gain
     n, k_modes = om.shape
     zeta = system.zeta[:, None]
@@ -226,41 +306,64 @@ def _coefficients(system: LinearSystem, h: float, k1, alpha, beta) -> _Coefficie
     # the exponentials depend on the frequencies and damping only: once per block of rows
     # that share them (one bat), broadcast to its rows
     e1, e2, p1, p2, p3, q_half = (np.empty((n, k_modes), complex) for _ in range(6))
+    runs: list[tuple[int, int]] | None = []  # merged blocks sharing their modes
     for a, b in system.blocks or ((0, n),):
         same = bool(np.all(om[a:b] == om[a:a + 1])) and bool(np.all(zeta[a:b] == zeta[a]))
         vals = _exponentials(lam[a:a + 1], h) if same else _exponentials(lam[a:b], h)
         for target, v in zip((e1, e2, p1, p2, p3, q_half), vals, strict=True):
             target[a:b] = v
-    c_y = g / om_d  # contact-point displacement y = sum c_y Im(Z)
+        if not same:
+            runs = None
+        elif runs is not None:
+            if runs and np.array_equal(om[a], om[runs[-1][0]]) \
+                    and system.zeta[a] == system.zeta[runs[-1][0]]:
+                runs[-1] = (runs[-1][0], b)
+            else:
+                runs.append((a, b))
+    c_y = g / om_d  # contact-point displacement y = sum c_y Im(Z) = sum Im(Y)
     # Z_new = e1 Z + forcing @ (F0, Fa + Fb, Fc)  (Cox & Matthews 2002, Eq. 26)
-    forcing = -g[:, None, :] * np.stack([h * (p1 - 3 * p2 + 4 * p3), 2 * h * (p2 - 2 * p3),
-                                         h * (4 * p3 - p2)], axis=1)
+    push = -np.stack([h * (p1 - 3 * p2 + 4 * p3), 2 * h * (p2 - 2 * p3),
+                      h * (4 * p3 - p2)], axis=1)  # forcing of Z per unit g, (n, 3, K)
 
-    def im_weights(coef):  # Im(sum coef Z) = im_weights(coef) . Z.view(float)
-        wt = np.empty((n, 2 * k_modes))
-        wt[:, 0::2], wt[:, 1::2] = coef.imag, coef.real
+    def im_weights(coef):  # Im(sum coef Y) = im_weights(coef) . Y.view(float)
+        wt = np.empty(coef.shape[:-1] + (2 * k_modes,))
+        wt[..., 0::2], wt[..., 1::2] = coef.imag, coef.real
         return wt
 
-    # read-outs: free y after h/2 and h, y' now (= Im(sum (i g - zeta om c_y) Z))
-    rows = [im_weights(c_y * e2), im_weights(c_y * e1), im_weights(1j * g - zeta * om * c_y)]
     inv_mu = system.inv_reduced_mass
     ka = -(c_y * g * q_half.imag).sum(1)
-    kn = [(c_y * forcing[:, i, :].imag).sum(1) - (h * h / 6 * inv_mu if i < 2 else 0.0)
-          for i in range(3)]
     per_row = [np.broadcast_to(np.asarray(x, dtype=float), (n,)).copy() for x in (k1, alpha, beta)]
     k1, alpha, beta = per_row
+    # read-outs: free y after h/2 and h, y' now (= Im(sum lam Y)); forcing of Y
+    modal: _RowByRow | _Shared
+    if runs is not None and len(runs) * _SHARED_ROWS <= max(n, _SHARED_ROWS):
+        first = [a for a, _ in runs]
+        modal = _Shared(
+            R=np.ascontiguousarray(im_weights(
+                np.stack([e2[first], e1[first], lam[first]], axis=1)).transpose(0, 2, 1)),
+            P=np.ascontiguousarray(push[first]).view(float),
+            scale=np.repeat(c_y * g, 2, axis=1),
+            group=np.repeat(np.arange(len(runs)), [b - a for a, b in runs]))
+    else:
+        modal = _RowByRow(R=np.ascontiguousarray(im_weights(np.stack([e2, e1, lam], axis=1))),
+                          B=np.ascontiguousarray((c_y * g)[:, None, :] * push).view(float))
     return _Coefficients(
         ka=ka, b0=-h * h / 4 * inv_mu, c0=-(c_y * g * (e2 * q_half).imag).sum(1) - ka,
-        cb=2 * ka, ca=-h * h / 2 * inv_mu, n0=kn[0], n1=kn[1], n2=kn[2], w6=-h * h / 6 * inv_mu,
-        v6=-h / 6 * inv_mu, e1=e1, B=np.ascontiguousarray(forcing).view(float),
-        R=np.ascontiguousarray(np.stack(rows, axis=1)), beta=beta, ab=alpha - beta,
-        lk1=np.log(k1), alpha=alpha, shell_factor=0.5 / (1.0 - system.zeta**2))
+        cb=2 * ka, ca=-h * h / 2 * inv_mu, w6=-h * h / 6 * inv_mu,
+        v6=-h / 6 * inv_mu, e1=e1, c_y=c_y, beta=beta, ab=alpha - beta, lk1=np.log(k1),
+        alpha=alpha, shell_factor=0.5 / (1.0 - system.zeta**2), top_seen=np.full(n, np.nan),
+        im_sum=np.tile([0.0, 1.0], k_modes), modal=modal)
 
 
 def _force(c: _Coefficients, x: np.ndarray, l_top: np.ndarray) -> np.ndarray:
     """:func:`contact.contact_force` in log form, both branches in one exp [N]."""
     lx = np.log(np.maximum(x, _TINY))
     return np.exp(c.lk1 + c.ab * np.maximum(lx, l_top) + c.beta * lx)
+
+
+def _unscaled(y: np.ndarray, c_y: np.ndarray) -> np.ndarray:
+    """``Z = Y / c_y``; a mode of zero gain is never driven (``Z = 0``)."""
+    return np.divide(y, c_y, out=np.zeros_like(y), where=c_y != 0)
 
 
 def _step(st: _State, c: _Coefficients, h: float, shell: slice | None) -> np.ndarray:
@@ -271,33 +374,34 @@ def _step(st: _State, c: _Coefficients, h: float, shell: slice | None) -> np.nda
     is taken when the ball's compression peaks (the stored energies' largest moment, within the
     shell's lag), where the ball holds ``k1 u_top^(1 + alpha) / (1 + alpha)``.
     """
-    base = np.matmul(c.R, st.z.view(float)[:, :, None])[:, :, 0]
+    base = c.modal.read(st.z.view(float))
     u2 = base[:, 0] + st.w + 0.5 * h * st.v
     u1 = base[:, 1] + st.w + h * st.v
     du = st.v + base[:, 2]
     turned = (st.du_prev > 0) & (du <= 0) & (st.u > 0)
-    if turned.any():  # the maximum compression fell inside the last step: refine u_top
+    if np.count_nonzero(turned):  # the maximum compression fell inside the last step: refine u_top
         top = _hermite_max(st.u_prev[turned], st.du_prev[turned], st.u[turned], du[turned], h)
         if shell is not None:  # the shell's share of the stored energy at the ball's maximum
             rows = np.flatnonzero(turned)[top >= st.u_top[turned]]  # the largest maximum
             top_rows = top[top >= st.u_top[turned]]
             a1 = 1.0 + c.alpha[rows]
             ball = np.exp(c.lk1[rows] + a1 * np.log(top_rows)) / a1
-            barrel = c.shell_factor[rows] * (st.z[rows, shell].imag ** 2).sum(1)
+            z = _unscaled(st.z[rows, shell], c.c_y[rows, shell])
+            barrel = c.shell_factor[rows] * (z.imag ** 2).sum(1)
             st.share[rows] = barrel / (ball + barrel)
         st.u_top[turned] = np.maximum(st.u_top[turned], top)
     st.u_prev, st.du_prev = st.u, du
     l_top = np.log(st.u_top)
-    f0 = _force(c, st.u, l_top)
+    f = np.empty((du.size, 3))
+    f0 = f[:, 0] = _force(c, st.u, l_top)
     fa = _force(c, u2 + c.ka * f0, l_top)
     fb = _force(c, u2 + c.ka * fa + c.b0 * f0, l_top)
-    fc = _force(c, u1 + c.c0 * f0 + c.cb * fb + c.ca * fa, l_top)
-    fab = fa + fb
-    f_vec = np.stack([f0, fab, fc], axis=1)[:, None, :]
-    st.z = c.e1 * st.z + np.matmul(f_vec, c.B)[:, 0, :].view(complex)
-    u_new = u1 + c.n0 * f0 + c.n1 * fab + c.n2 * fc
+    fc = f[:, 2] = _force(c, u1 + c.c0 * f0 + c.cb * fb + c.ca * fa, l_top)
+    fab = f[:, 1] = fa + fb
+    st.z = c.e1 * st.z + c.modal.push(f).view(complex)
     s4 = f0 + 2.0 * fab + fc
     st.w = st.w + h * st.v + c.w6 * (f0 + fab)
+    u_new = st.z.view(float) @ c.im_sum + st.w  # y = sum Im(Y), u = y + w
     st.v = st.v + c.v6 * s4
     st.impulse = st.impulse + (h / 6.0) * s4
     st.f_peak = np.maximum(st.f_peak, f0)
@@ -347,7 +451,7 @@ def march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: floa
     parts = []
     for a in range(0, n, chunk):
         b = min(a + chunk, n)
-        parts.append(_march(_rows(system, a, b), k1[a:b], alpha[a:b], beta[a:b], speed[a:b],
+        parts.append(_march(system.rows(a, b), k1[a:b], alpha[a:b], beta[a:b], speed[a:b],
                             time_step, max_time,
                             None if restitution is None else _offset(restitution, a)))
     return Separation.concatenate(parts)
@@ -355,15 +459,6 @@ def march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: floa
 
 def _offset(restitution, start: int):
     return lambda u_top, rows: restitution(u_top, rows + start)
-
-
-def _rows(system: LinearSystem, a: int, b: int) -> LinearSystem:
-    """Rows ``a:b`` of a system, its blocks clipped to them."""
-    blocks = tuple((max(s, a) - a, min(e, b) - a) for s, e in system.blocks or ((0, b),)
-                   if s < b and e > a)
-    return LinearSystem(omega=system.omega[a:b], zeta=system.zeta[a:b], gain=system.gain[a:b],
-                        rigid_mass=system.rigid_mass[a:b], ball_mass=system.ball_mass[a:b],
-                        shell_columns=system.shell_columns, blocks=blocks)
 
 
 def _march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: float,
@@ -389,7 +484,8 @@ def _march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: flo
     def record(mask):
         idx = st.rows[mask]
         out.impulse[idx], out.peak_force[idx] = st.impulse[mask], st.f_peak[mask]
-        out.max_compression[idx], out.modal[idx] = st.u_top[mask], st.z[mask]
+        out.max_compression[idx] = st.u_top[mask]
+        out.modal[idx] = _unscaled(st.z[mask], c.c_y[mask])
         if out.barrel_share is not None:
             out.barrel_share[idx] = st.share[mask]
         return idx
@@ -397,12 +493,11 @@ def _march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: flo
     t = 0.0
     for _ in range(int(np.ceil(max_time / h))):
         if restitution is not None:  # the ball's loss follows its compression so far
-            c.beta = restitution(st.u_top, st.rows)
-            c.ab = c.alpha - c.beta
+            _restitute(c, st, restitution)
         u_new = _step(st, c, h, shell)
         t += h
         done = (u_new <= 0.0) & (st.u > 0.0)  # separation; finished rows are parked at u = -1 m
-        if done.any():
+        if np.count_nonzero(done):
             idx = record(done)
             out.time[idx] = t - h + h * st.u[done] / (st.u[done] - u_new[done])
             out.separated[idx] = True
@@ -419,6 +514,21 @@ def _march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: flo
         st.u = u_new
     out.time[record(live)] = t  # the time cap came first: report that state, flagged
     return out
+
+
+def _restitute(c: _Coefficients, st: _State, restitution) -> None:
+    """Re-evaluate ``beta`` where the largest compression has grown since it was last
+    evaluated (all rows while the balls compress, none once they all recover)."""
+    grew = st.u_top != c.top_seen
+    changed = np.count_nonzero(grew)
+    if changed == grew.size:
+        c.beta, c.top_seen = restitution(st.u_top, st.rows), st.u_top.copy()
+        c.ab = c.alpha - c.beta
+    elif changed:
+        rows = np.flatnonzero(grew)
+        c.beta[rows] = restitution(st.u_top[rows], st.rows[rows])
+        c.top_seen[rows] = st.u_top[rows]
+        c.ab[rows] = c.alpha[rows] - c.beta[rows]
 
 
 def _hermite_max(u0, d0, u1, d1, h):

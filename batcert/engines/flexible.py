@@ -311,15 +311,24 @@ class FlexibleEngine:
         one (:func:`~batcert.physics.march.stack_systems`). ``jobs`` holds tuples ``(bat,
         ball, pivot, batch, support[, modes])`` as :meth:`solve` takes them; the outcomes come
         back in the same order, each exactly what :meth:`solve` gives for it alone."""
-        prepared = []
-        for job in jobs:
-            bat, ball, pivot, batch, support, *rest = job
-            if batch.impact_location.ndim != 1:
-                batch = ImpactBatch(*(np.ravel(a) for a in (
-                    batch.impact_location, batch.pitch_speed, batch.bat_angular_speed)))
-            system, extras = self.linear_system(bat, ball, pivot, batch, support,
-                                                rest[0] if rest else None)
-            prepared.append((bat, ball, pivot, batch, support, system, extras))
+        ready: dict[int, tuple[BatModel, BallModel, float, ImpactBatch, str, LinearSystem,
+                               dict]] = {}
+        for members in self._alike(jobs).values():
+            batches = [_flat(jobs[i][3]) for i in members]
+            bat, ball, pivot, _, support, *rest = jobs[members[0]]
+            # the jobs of one bat, ball, pivot and support share one linear system (a bat's
+            # patches and barrel are read for all their rows at once), split back per job
+            system, extras = self.linear_system(bat, ball, pivot, _concatenate(batches),
+                                                support, rest[0] if rest else None)
+            start = 0
+            for i, batch in zip(members, batches, strict=True):
+                a, b = start, start + batch.impact_location.size
+                start = b
+                mine = (system, extras) if len(members) == 1 else (
+                    system.rows(a, b),
+                    {k: v[a:b] if k in _ROW_EXTRAS else v for k, v in extras.items()})
+                ready[i] = (bat, ball, pivot, batch, support, *mine)
+        prepared = [ready[i] for i in range(len(jobs))]
         out: list[ImpactOutcome | None] = [None] * len(prepared)
         steps: dict[float, list[int]] = {}
         for i, job in enumerate(prepared):
@@ -329,6 +338,15 @@ class FlexibleEngine:
             for i, sep in zip(members, seps, strict=True):
                 out[i] = self._outcome(*prepared[i], sep)
         return out  # type: ignore[return-value]
+
+    @staticmethod
+    def _alike(jobs) -> dict[tuple, list[int]]:
+        """The jobs (indices) that share bat, ball, pivot, support and given modes."""
+        groups: dict[tuple, list[int]] = {}
+        for i, (bat, ball, pivot, _, support, *rest) in enumerate(jobs):
+            key = (id(bat), ball, float(pivot), support, id(rest[0]) if rest else None)
+            groups.setdefault(key, []).append(i)
+        return groups
 
     def _integrate(self, jobs: list, step: float) -> list[Separation]:
         """One march over the stacked rows of ``jobs`` (prepared as in :meth:`solve_many`);
@@ -350,7 +368,7 @@ class FlexibleEngine:
                     if mine.any():
                         beta[mine] = law(u_top[mine], rows[mine])
                 return beta
-            restitution = by_ball
+            restitution = laws[0] if len(laws) == 1 else by_ball
             beta = by_ball(np.full(bounds[-1], 1e-12), np.arange(bounds[-1]))
         else:
             beta = np.concatenate([contact.restitution_exponent(b.alpha, b.cor(j[3].relative_speed))
@@ -395,6 +413,24 @@ class FlexibleEngine:
             diag.update(_states(system, extras, sep, q, p, pivot, w1 * r, w1))
         return ImpactOutcome(exit_speed=vb, bat_angular_speed_after=w2, cor=cor, recoil_factor=k,
                              diagnostics=diag)
+
+
+# the entries of linear_system's extras that hold one row per impact
+_ROW_EXTRAS = ("phi", "beam_rigid_mass", "shell_static")
+
+
+def _flat(batch: ImpactBatch) -> ImpactBatch:
+    if batch.impact_location.ndim == 1:
+        return batch
+    return ImpactBatch(*(np.ravel(a) for a in (batch.impact_location, batch.pitch_speed,
+                                               batch.bat_angular_speed)))
+
+
+def _concatenate(batches: list[ImpactBatch]) -> ImpactBatch:
+    if len(batches) == 1:
+        return batches[0]
+    return ImpactBatch(*(np.concatenate([getattr(b, a) for b in batches]) for a in (
+        "impact_location", "pitch_speed", "bat_angular_speed")))
 
 
 def _laws(balls: list[BallModel], sizes: list[int]) -> tuple[list, np.ndarray]:

@@ -239,6 +239,8 @@ def compute_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
 
 
 _CACHE: OrderedDict[tuple, BarrelModes | None] = OrderedDict()  # nominal walls
+# each bat's own (scaled) wall, by identity: the engine asks for it once per batch
+_LAST: OrderedDict[tuple, tuple[BatModel, BarrelModes | None]] = OrderedDict()
 # The nominal wall's modes are computed at least to this [Hz]: 1.25 x the 12 kHz of the bat's
 # mode summary (model.diagnostics), which also covers the engine's 10 kHz for barrels down to
 # x0.44 of their nominal stiffness (the plausible range's x0.8 among them) without recomputing.
@@ -260,6 +262,20 @@ def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
     """
     if bat.construction != "hollow":
         return None
+    key = (id(bat), float(max_frequency), int(dynamic_orders), int(static_orders))
+    hit = _LAST.get(key)
+    if hit is not None and hit[0] is bat:
+        _LAST.move_to_end(key)
+        return hit[1]
+    modes = _barrel_modes(bat, max_frequency, dynamic_orders, static_orders)
+    _LAST[key] = (bat, modes)
+    while len(_LAST) > 16:
+        _LAST.popitem(last=False)
+    return modes
+
+
+def _barrel_modes(bat: BatModel, max_frequency: float, dynamic_orders: int,
+                  static_orders: int) -> BarrelModes | None:
     # a bat whose density is uniformly scaled (reconciled to another measured mass) has the
     # same wall with another mass: the key and the computation use the density relative to its
     # largest value (to 12 digits) times that value rounded to a 1/16 step of its base-2
@@ -346,6 +362,7 @@ def _from_arrays(a: dict | None, cut: float) -> BarrelModes | None:
 def clear_barrel_cache() -> None:
     """Empty the in-process barrel cache."""
     _CACHE.clear()
+    _LAST.clear()
 
 
 def _w_load(shell: ShellOfRevolution, points: np.ndarray, weights: np.ndarray) -> np.ndarray:
@@ -356,10 +373,9 @@ def _w_load(shell: ShellOfRevolution, points: np.ndarray, weights: np.ndarray) -
     cols, h = normal_reader(shell, 2, points)  # order 2's layout: 5 dofs per node
     node, slot = np.divmod(cols, 5)
     w_cols = 3 * node + np.select([slot == 0, slot == 3], [0, 1], 2)
-    g = np.zeros((p, 3 * shell.z.size))
-    np.add.at(g, (np.broadcast_to(np.arange(p)[:, None, None], cols.shape), w_cols),
-              h * weights[..., None])
-    return g
+    size = 3 * shell.z.size
+    flat = (np.arange(p)[:, None, None] * size + w_cols).ravel()
+    return np.bincount(flat, (h * weights[..., None]).ravel(), p * size).reshape(p, size)
 
 
 def patch_half_angle(bat: BatModel, z: np.ndarray, half_length: np.ndarray) -> np.ndarray:
@@ -454,22 +470,32 @@ def _patch_flexibility(green: np.ndarray, g: np.ndarray) -> np.ndarray:
 
 
 def _patch_flexibility_of(green: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """:func:`_patch_flexibility` computed: each patch's load read over a window of ``L``
+    unknowns (its longest patch's) from the band's start ``s``, ``q = sum_k sum_d c_d
+    f_k f_(k+d) G(s + k, s + k + d)`` with ``c_0 = 1``, ``c_d = 2`` (``G`` symmetric), one
+    matrix product per window start."""
     nz = g != 0
-    size = g.shape[1]
-    lo = np.argmax(nz, axis=1)
-    hi = size - np.argmax(nz[:, ::-1], axis=1)
+    on = np.flatnonzero(nz.any(axis=1))  # a patch off the wall reads nothing
     q = np.zeros((green.shape[0], g.shape[0]))
-    bands, which = np.unique(np.stack([lo, hi], axis=1), axis=0, return_inverse=True)
-    for k, (a, b) in enumerate(bands):
+    if on.size == 0:
+        return q
+    size = g.shape[1]
+    lo = np.argmax(nz[on], axis=1)
+    width = int((size - np.argmax(nz[on, ::-1], axis=1) - lo).max())
+    if width > green.shape[2]:
+        raise ValueError(f"a contact patch is longer than {PATCH_SPAN} m")
+    start = np.minimum(lo, size - width)
+    f = np.zeros((on.size, 2 * width))  # each load from its start, zero-padded
+    f[:, :width] = g[on[:, None], start[:, None] + np.arange(width)]
+    pairs = f[:, :width, None] * np.lib.stride_tricks.sliding_window_view(
+        f, width, axis=1)[:, :width, :]  # f_k f_(k+d), (patches, k, d)
+    pairs[:, :, 1:] *= 2.0
+    pairs = pairs.reshape(on.size, -1)
+    starts, which = np.unique(start, return_inverse=True)
+    for k, s in enumerate(starts):
         rows = np.flatnonzero(which.ravel() == k)
-        if not nz[rows[0]].any():
-            continue  # a patch off the wall
-        if b - a > green.shape[2]:
-            raise ValueError(f"a contact patch is longer than {PATCH_SPAN} m")
-        i, j = np.meshgrid(np.arange(b - a), np.arange(b - a), indexing="ij")
-        block = green[:, a + np.minimum(i, j), np.abs(i - j)]  # (orders, b - a, b - a)
-        gb = g[rows, a:b]
-        q[:, rows] = (np.matmul(gb, block) * gb).sum(axis=-1)
+        window = green[:, s:s + width, :width].reshape(green.shape[0], -1)
+        q[:, on[rows]] = window @ pairs[rows].T
     return q
 
 

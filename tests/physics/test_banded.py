@@ -115,3 +115,24 @@ def test_the_band_covers_the_longest_patch_a_ball_spec_allows(wall):
     with pytest.raises(ValueError, match="longer than"):
         barrel._patch_flexibility_of(
             modes.green, barrel._w_load(sh, wider, np.full(wider.shape, 1 / 15)))
+
+
+def test_patches_of_different_lengths_read_together(wall):
+    # one call with short and long patches, patches at the wall's ends (their windows are
+    # shifted to fit the wall) and one off the wall (it reads nothing): each equals the dense
+    # sum g^T G g for that patch alone (rounding only, as above)
+    sh, modes = wall
+    z = np.array([0.45, 0.47, 0.6, sh.z[0] + 0.002, sh.z[-1] - 0.002, sh.z[0] - 0.15])
+    half = np.array([0.1, 0.01, 0.03, 0.05, 0.1, 0.02])
+    points = z[:, None] + half[:, None] * np.linspace(-1, 1, 15)[None, :]
+    g = barrel._w_load(sh, points, np.full(points.shape, 1 / 15))
+    assert not g[-1].any()
+    together = barrel._patch_flexibility_of(modes.green, g)
+    for o, n in enumerate(modes.orders[:3]):
+        dense = np.einsum("pi,ij,pj->p", g, _dense_flexibility(sh, n), g)
+        np.testing.assert_allclose(together[o, :-1], dense[:-1], rtol=1e-9)
+    np.testing.assert_array_equal(together[:, -1], 0.0)
+    for i in range(z.size - 1):
+        np.testing.assert_allclose(together[:, i],
+                                   barrel._patch_flexibility_of(modes.green, g[i:i + 1])[:, 0],
+                                   rtol=1e-13)

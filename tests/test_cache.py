@@ -11,7 +11,9 @@ import pytest
 from batcert.cache import ArrayStore, cache_dir, code_fingerprint
 
 ARRAYS = {"a": np.linspace(0.0, 1.0, 7), "b": np.arange(6.0).reshape(2, 3),
-          "s": np.array(("closed", "open"))}
+          "s": np.array(("closed", "open")), "x": np.array(2.5), "n": np.arange(3, dtype=np.int64),
+          "c": np.array([1 + 2j, 3 - 4j]), "t": np.arange(12.0).reshape(3, 4).T,
+          "e": np.zeros((0, 3)), "f": np.array([True, False])}
 
 
 @pytest.fixture
@@ -29,7 +31,7 @@ def test_an_entry_round_trips_exactly(where):
     assert store.load("k") is None
     store.save("k", ARRAYS)
     assert same(store.load("k"), ARRAYS)
-    assert [p.suffix for p in where.iterdir()] == [".npz"]  # no temporary file left
+    assert [p.suffix for p in where.iterdir()] == [".arrays"]  # no temporary file left
 
 
 def test_entries_follow_the_code_that_made_them(where):
@@ -47,14 +49,29 @@ def test_no_code_no_store(where):
     assert not where.exists() or not any(where.iterdir())
 
 
-def test_a_damaged_entry_is_a_miss_and_is_replaced(where):
+@pytest.mark.parametrize("damage", ["foreign", "truncated", "header", "shape"])
+def test_a_damaged_entry_is_a_miss_and_is_replaced(where, damage):
     store = ArrayStore("things", code=("batcert.cache",))
     store.save("k", ARRAYS)
-    (path,) = where.glob("*.npz")
-    path.write_bytes(b"PK\x03\x04 not a zip")
+    (path,) = where.glob("*.arrays")
+    data = path.read_bytes()
+    path.write_bytes({"foreign": b"PK\x03\x04 not ours",
+                      "truncated": data[:len(data) // 2],
+                      "header": data.replace(b'"shape"', b'"shope"', 1),
+                      "shape": data.replace(b"[2, 3]", b"[9, 9]", 1)}[damage])
     assert store.load("k") is None
     store.save("k", ARRAYS)
     assert same(store.load("k"), ARRAYS)
+
+
+def test_loaded_arrays_are_writable_and_arrays_of_objects_are_not_kept(where):
+    store = ArrayStore("things", code=("batcert.cache",))
+    store.save("k", ARRAYS)
+    loaded = store.load("k")
+    loaded["a"][0] = 5.0  # a private copy of the file's bytes
+    assert same(store.load("k"), ARRAYS)
+    store.save("objects", {"o": np.array([{}, None], dtype=object)})
+    assert store.load("objects") is None
 
 
 def test_an_unwritable_cache_is_passed_over(tmp_path, monkeypatch):
@@ -69,17 +86,17 @@ def test_an_unwritable_cache_is_passed_over(tmp_path, monkeypatch):
 def test_the_least_recently_used_entries_go_first(where):
     size = ArrayStore("things", code=("batcert.cache",))
     size.save("probe", ARRAYS)
-    (probe,) = where.glob("*.npz")
+    (probe,) = where.glob("*.arrays")
     one = probe.stat().st_size
     probe.unlink()
     store = ArrayStore("things", code=("batcert.cache",), limit=int(2.5 * one))
     store.save("first", ARRAYS)
     store.save("second", ARRAYS)
-    old = [(p, p.stat().st_mtime) for p in where.glob("*.npz")]
+    old = [(p, p.stat().st_mtime) for p in where.glob("*.arrays")]
     for p, _ in old:  # make "first" the older and then read it: it becomes the recent one
         os.utime(p, (1, 1))
     assert store.load("first") is not None
     store.save("third", ARRAYS)
     assert store.load("first") is not None and store.load("third") is not None
     assert store.load("second") is None
-    assert len(list(where.glob("*.npz"))) == 2
+    assert len(list(where.glob("*.arrays"))) == 2

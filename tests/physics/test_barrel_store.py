@@ -88,7 +88,7 @@ def test_the_second_run_reads_the_wall(batcert_cli, tmp_path, monkeypatch):
     monkeypatch.setenv("BATCERT_CACHE_DIR", str(tmp_path / "cache"))
     barrel.clear_barrel_cache()
     first = batcert_cli("run", "aluminium-34", "-p", "ncaa-bbcor", "--json")
-    stored = list((tmp_path / "cache" / "barrels").glob("*.npz"))
+    stored = list((tmp_path / "cache" / "barrels").glob("*.arrays"))
     assert len(stored) == 1
     barrel.clear_barrel_cache()
     monkeypatch.setattr(barrel, "compute_barrel_modes",

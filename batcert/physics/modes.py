@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from batcert.physics import stores
 from batcert.physics.batmodel import BatModel
 from batcert.physics.beam import N_RIGID, assemble, check_support, free_dofs, mesh_nodes, rigid_modes
 
@@ -178,7 +179,9 @@ def model_hash(bat: BatModel) -> str:
 
 def cached_modes(bat: BatModel, support: str, pivot: float, n_modes: int = 24,
                  refine: int = 1) -> Modes:
-    """:func:`compute_modes` memoised in-process (LRU, 64 entries) on the model's content hash.
+    """:func:`compute_modes` memoised in-process (LRU, 64 entries) on the model's content hash,
+    and kept in the store of :mod:`batcert.physics.stores` where a front end installed one
+    (the command line's cache directory), which returns the computed arrays exactly.
 
     The returned arrays are read-only because they are shared between callers.
     """
@@ -186,13 +189,35 @@ def cached_modes(bat: BatModel, support: str, pivot: float, n_modes: int = 24,
     if key in _CACHE:
         _CACHE.move_to_end(key)
         return _CACHE[key]
-    modes = compute_modes(bat, support, pivot, n_modes, refine)
+    store = stores.get("modes")
+    stored = hashlib.sha256(repr(key).encode()).hexdigest()
+    modes = _from_arrays(store.load(stored), support, float(pivot)) if store else None
+    if modes is None:
+        modes = compute_modes(bat, support, pivot, n_modes, refine)
+        if store:
+            store.save(stored, {"z": modes.z, "omega": modes.omega, "shapes": modes.shapes,
+                                "rotations": modes.rotations, "n_rigid": np.array(modes.n_rigid)})
     for a in (modes.z, modes.omega, modes.shapes, modes.rotations):
         a.flags.writeable = False
     _CACHE[key] = modes
     if len(_CACHE) > _CACHE_SIZE:
         _CACHE.popitem(last=False)
     return modes
+
+
+def _from_arrays(a: dict | None, support: str, pivot: float) -> Modes | None:
+    """Stored modes, or None if ``a`` is missing or does not hold a consistent set."""
+    if a is None:
+        return None
+    try:
+        modes = Modes(support=support, pivot=pivot, z=a["z"], omega=a["omega"],
+                      shapes=a["shapes"], rotations=a["rotations"], n_rigid=int(a["n_rigid"]))
+        ok = (modes.z.ndim == 1 and modes.omega.ndim == 1 and modes.shapes.shape ==
+              modes.rotations.shape == (modes.omega.size, modes.z.size)
+              and 0 < modes.n_rigid <= modes.omega.size)
+    except (KeyError, TypeError, ValueError):
+        return None
+    return modes if ok else None
 
 
 def clear_mode_cache() -> None:

@@ -19,6 +19,9 @@ class Store(Protocol):
 
 
 CODE = {
+    # batcert.physics.modes.cached_modes: a bat's beam modes
+    "modes": ("batcert.physics.modes", "batcert.physics.beam", "batcert.physics.batmodel",
+              "numpy"),
     # batcert.physics.barrel.cached_barrel_modes: a hollow bat's nominal wall
     "barrel": ("batcert.physics.barrel", "batcert.physics.shell", "batcert.physics.banded",
                "numpy", "scipy"),

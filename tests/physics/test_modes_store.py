@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from r161 import r161_bat
 
 from batcert.physics import modes as modes_module
 from batcert.physics import stores
-from r161 import r161_bat
 
 PIVOT = 0.1524  # [m from knob]
 FIELDS = ("z", "omega", "shapes", "rotations")

@@ -15,20 +15,8 @@ import scipy.special
 from batcert.physics import barrel, shell, stores
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "engines"))
+from dict_store import DictStore  # noqa: E402
 from test_flexible import hollow_bat  # noqa: E402
-
-
-class DictStore:
-    def __init__(self):
-        self.entries, self.loads, self.saves = {}, 0, 0
-
-    def load(self, key):
-        self.loads += 1
-        return self.entries.get(key)
-
-    def save(self, key, arrays):
-        self.saves += 1
-        self.entries[key] = {k: np.array(v) for k, v in arrays.items()}
 
 
 @pytest.fixture

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from dict_store import DictStore
 from r161 import r161_bat
 
 from batcert.physics import modes as modes_module
@@ -13,18 +14,6 @@ from batcert.physics import stores
 
 PIVOT = 0.1524  # [m from knob]
 FIELDS = ("z", "omega", "shapes", "rotations")
-
-
-class DictStore:
-    def __init__(self):
-        self.entries, self.saves = {}, 0
-
-    def load(self, key):
-        return self.entries.get(key)
-
-    def save(self, key, arrays):
-        self.saves += 1
-        self.entries[key] = {k: np.array(v) for k, v in arrays.items()}
 
 
 @pytest.fixture

@@ -20,7 +20,6 @@ from batcert.results.serialise import utc_now
 from batcert.runner.runner import run_protocols
 from batcert.specs.resolve import display_path, resolve
 from batcert.specs.study import StudySpec
-from batcert.sweeps.study_figures import figure_plans, study_figure
 
 
 def _protocols(spec: StudySpec | None, extra: list[str]) -> list[ProtocolInputs]:
@@ -74,7 +73,11 @@ def run_comparison(bats: list[str], protocols: list[str], study: str | None = No
     entries = [BatEntry(lab, b.built.spec.name, display_path(b.path), b.built.spec.sha256,
                         b.built.model.length, b.built.model.construction,
                         b.built.model.material.name) for lab, b in zip(labels, loaded, strict=True)]
-    figures = [study_figure(f, f.protocol, plans) for f, plans in planned]
+    figures = []
+    if planned:  # a study's figures: sweeps (their modules cost 30 ms to import otherwise)
+        from batcert.sweeps.study_figures import study_figure
+
+        figures = [study_figure(f, f.protocol, plans) for f, plans in planned]
     return compare(runs, ref, bats=entries, title=spec.title if spec else "", figures=figures,
                    created=created,
                    study=spec.id if spec else None,
@@ -86,6 +89,8 @@ def run_comparison(bats: list[str], protocols: list[str], study: str | None = No
 def _figure_plans(spec: StudySpec, loaded: list[LoadedBat], labels: list[str], ref: int,
                   proto_inputs: list[ProtocolInputs], engine: str, created: str) -> list:
     """Each study figure with the planned sweeps of its bats (each a protocol condition)."""
+    from batcert.sweeps.study_figures import figure_plans
+
     by_id = {p.protocol.id: p for p in proto_inputs}
     out = []
     for f in spec.figures:

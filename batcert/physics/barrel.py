@@ -302,14 +302,12 @@ def _barrel_modes(bat: BatModel, max_frequency: float, dynamic_orders: int,
     if base is not None:
         _CACHE.move_to_end(key)
     else:
-        store, stored = stores.get("barrel"), _stored_key(key)
-        base = _from_arrays(store.load(stored), cut) if store else None
-        if base is None:
+        def compute() -> BarrelModes | None:
             nominal = replace(bat, linear_density=relative, barrel_stiffness_scale=1.0,
                               barrel_mass_scale=1.0)
-            base = compute_barrel_modes(nominal, cut, dynamic_orders, static_orders)
-            if store and base is not None:
-                store.save(stored, _to_arrays(base))
+            return compute_barrel_modes(nominal, cut, dynamic_orders, static_orders)
+
+        base = stores.kept("barrel", key, compute, _to_arrays, lambda a: _from_arrays(a, cut))
         _CACHE[key] = base
         while len(_CACHE) > 8:
             _CACHE.popitem(last=False)
@@ -318,11 +316,6 @@ def _barrel_modes(bat: BatModel, max_frequency: float, dynamic_orders: int,
     shell = barrel_shell(bat)
     assert shell is not None
     return base.scaled(shell, s_k, s_m, float(max_frequency))
-
-
-def _stored_key(key: tuple) -> str:
-    """The store's name of the nominal wall ``key`` (the store adds the code's fingerprint)."""
-    return hashlib.sha256(repr(key).encode()).hexdigest()
 
 
 def _to_arrays(modes: BarrelModes) -> dict[str, np.ndarray]:

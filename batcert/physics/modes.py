@@ -189,20 +189,20 @@ def cached_modes(bat: BatModel, support: str, pivot: float, n_modes: int = 24,
     if key in _CACHE:
         _CACHE.move_to_end(key)
         return _CACHE[key]
-    store = stores.get("modes")
-    stored = hashlib.sha256(repr(key).encode()).hexdigest()
-    modes = _from_arrays(store.load(stored), support, float(pivot)) if store else None
-    if modes is None:
-        modes = compute_modes(bat, support, pivot, n_modes, refine)
-        if store:
-            store.save(stored, {"z": modes.z, "omega": modes.omega, "shapes": modes.shapes,
-                                "rotations": modes.rotations, "n_rigid": np.array(modes.n_rigid)})
+    modes = stores.kept("modes", key, lambda: compute_modes(bat, support, pivot, n_modes, refine),
+                        _to_arrays, lambda a: _from_arrays(a, support, float(pivot)))
+    assert modes is not None
     for a in (modes.z, modes.omega, modes.shapes, modes.rotations):
         a.flags.writeable = False
     _CACHE[key] = modes
     if len(_CACHE) > _CACHE_SIZE:
         _CACHE.popitem(last=False)
     return modes
+
+
+def _to_arrays(modes: Modes) -> dict[str, np.ndarray]:
+    return {"z": modes.z, "omega": modes.omega, "shapes": modes.shapes,
+            "rotations": modes.rotations, "n_rigid": np.array(modes.n_rigid)}
 
 
 def _from_arrays(a: dict | None, support: str, pivot: float) -> Modes | None:

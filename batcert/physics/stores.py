@@ -9,7 +9,11 @@ modules whose source (or, for a library, release) the store must fold into its k
 
 from __future__ import annotations
 
-from typing import Any, Protocol
+import hashlib
+from collections.abc import Callable
+from typing import Any, Protocol, TypeVar
+
+T = TypeVar("T")
 
 
 class Store(Protocol):
@@ -41,3 +45,24 @@ def use(kind: str, store: Store | None) -> None:
 def get(kind: str) -> Store | None:
     """The store installed for ``kind``, or None."""
     return _STORES.get(kind)
+
+
+def kept(kind: str, key: tuple, compute: Callable[[], T | None],
+         to_arrays: Callable[[T], dict[str, Any]],
+         from_arrays: Callable[[dict[str, Any] | None], T | None]) -> T | None:
+    """``compute()``, or what the store installed for ``kind`` holds under ``key``.
+
+    ``from_arrays`` rebuilds the result from a stored entry (None for a missing one) or returns
+    None when the entry does not fit; then the result is computed and, unless None, stored
+    (``to_arrays``) under ``key`` (hashed; the store adds its code's fingerprint).
+    """
+    store = _STORES.get(kind)
+    if store is None:
+        return compute()
+    name = hashlib.sha256(repr(key).encode()).hexdigest()
+    value = from_arrays(store.load(name))
+    if value is None:
+        value = compute()
+        if value is not None:
+            store.save(name, to_arrays(value))
+    return value

@@ -3,7 +3,11 @@ its cache directory), counting its loads and saves."""
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+
 import numpy as np
+
+from batcert.physics import stores
 
 
 class DictStore:
@@ -17,3 +21,18 @@ class DictStore:
     def save(self, key, arrays):
         self.saves += 1
         self.entries[key] = {k: np.array(v) for k, v in arrays.items()}
+
+
+@contextmanager
+def installed(kind: str, clear):
+    """A fresh :class:`DictStore` installed for ``kind``, the in-process cache emptied
+    (``clear``) before and after, the previous store put back."""
+    s = DictStore()
+    previous = stores.get(kind)
+    stores.use(kind, s)
+    clear()
+    try:
+        yield s
+    finally:
+        stores.use(kind, previous)
+        clear()

@@ -4,24 +4,11 @@ resumed journal with a fresh one, with ``==``; tests/sweeps/test_sweep.py)."""
 
 from __future__ import annotations
 
-from collections import OrderedDict
-
-import pytest
-
 from batcert.commands.inputs import load_bat_any, load_protocol_any
 from batcert.engines import get_engine
 from batcert.model.diagnostics import SUMMARY_MAX_FREQUENCY
 from batcert.physics import barrel
 from batcert.runner.runner import run_protocol
-
-
-@pytest.fixture
-def empty_barrel_cache():
-    saved = OrderedDict(barrel._CACHE)
-    barrel.clear_barrel_cache()
-    yield
-    barrel._CACHE.clear()
-    barrel._CACHE.update(saved)
 
 
 def test_a_flexible_run_does_not_depend_on_the_barrel_cache(empty_barrel_cache):

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections import OrderedDict
 
 import numpy as np
 import pytest
@@ -21,21 +20,6 @@ HOLLOW = ("aluminium-34", "bbcor-alloy-34")
 # a calibrated barrel (a measured hoop frequency scales the wall's stiffness and mass)
 CASES = [(1.003, 1.0, 1.0), (0.97, 1.0, 1.0), (1.003, 1.1, 0.9), (0.97, 0.95, 1.2)]
 PATCH = 15  # sample points across a contact patch, as the engine's default
-
-
-@pytest.fixture(scope="module")
-def own_barrel_cache():
-    """The module's walls in a cache of their own, the process's put back afterwards."""
-    saved = OrderedDict(barrel._CACHE)
-    barrel.clear_barrel_cache()
-    yield
-    barrel._CACHE.clear()
-    barrel._CACHE.update(saved)
-
-
-@pytest.fixture
-def empty_barrel_cache(own_barrel_cache):
-    barrel.clear_barrel_cache()
 
 
 @pytest.fixture(scope="module")

@@ -12,22 +12,17 @@ import numpy as np
 import pytest
 import scipy.special
 
-from batcert.physics import barrel, shell, stores
+from batcert.physics import barrel, shell
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "engines"))
-from dict_store import DictStore  # noqa: E402
+from dict_store import installed  # noqa: E402
 from test_flexible import hollow_bat  # noqa: E402
 
 
 @pytest.fixture
 def store():
-    s = DictStore()
-    previous = stores.get("barrel")
-    stores.use("barrel", s)
-    barrel.clear_barrel_cache()
-    yield s
-    stores.use("barrel", previous)
-    barrel.clear_barrel_cache()
+    with installed("barrel", barrel.clear_barrel_cache) as s:
+        yield s
 
 
 def equal(a: barrel.BarrelModes, b: barrel.BarrelModes) -> bool:

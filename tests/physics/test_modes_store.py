@@ -6,11 +6,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from dict_store import DictStore
+from dict_store import installed
 from r161 import r161_bat
 
 from batcert.physics import modes as modes_module
-from batcert.physics import stores
 
 PIVOT = 0.1524  # [m from knob]
 FIELDS = ("z", "omega", "shapes", "rotations")
@@ -18,13 +17,8 @@ FIELDS = ("z", "omega", "shapes", "rotations")
 
 @pytest.fixture
 def store():
-    s = DictStore()
-    previous = stores.get("modes")
-    stores.use("modes", s)
-    modes_module.clear_mode_cache()
-    yield s
-    stores.use("modes", previous)
-    modes_module.clear_mode_cache()
+    with installed("modes", modes_module.clear_mode_cache) as s:
+        yield s
 
 
 def refuse(*args, **kwargs):

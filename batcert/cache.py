@@ -164,13 +164,13 @@ def _pack(arrays: dict) -> list[bytes]:
         if a.dtype.hasobject:
             raise ValueError(f"{name}: an array of Python objects")
         items.append((name, a, offset))
-        offset += -(-a.nbytes // _ALIGN) * _ALIGN
+        offset += a.nbytes + -a.nbytes % _ALIGN
     header = json.dumps([{"name": n, "dtype": a.dtype.str, "shape": a.shape, "offset": o}
                          for n, a, o in items]).encode() + b"\n"
     pad = -(len(_MAGIC) + len(header)) % _ALIGN
     parts = [_MAGIC, header, b" " * pad]
     for _, a, _ in items:
-        parts += [a.tobytes(), bytes(-(-a.nbytes // _ALIGN) * _ALIGN - a.nbytes)]
+        parts += [a.tobytes(), bytes(-a.nbytes % _ALIGN)]
     return parts
 
 

@@ -71,6 +71,9 @@ DEFAULT_SHELL_FREQUENCY = 10_000.0  # [Hz]
 BALL_LOSS = ("compression", "relative-speed")
 _PIVOT_CLEARANCE = 1e-3  # an impact closer than this to the pivot is refused [m]
 _BEAM_CACHE: OrderedDict[tuple, tuple] = OrderedDict()  # see FlexibleEngine._beam_at
+# impacts solved together at most (FlexibleEngine.solve_many): memory bounded whatever the
+# batch, each pass's arrays in cache (measured, bench_engine.py)
+_PASS_ROWS = 4096
 
 
 def rigid_mode_velocities(modes: Modes, pivot: float) -> np.ndarray:
@@ -310,11 +313,28 @@ class FlexibleEngine:
         as few integrations as possible: the batches that share a time step are stacked into
         one (:func:`~batcert.physics.march.stack_systems`). ``jobs`` holds tuples ``(bat,
         ball, pivot, batch, support[, modes])`` as :meth:`solve` takes them; the outcomes come
-        back in the same order, each exactly what :meth:`solve` gives for it alone."""
+        back in the same order, each exactly what :meth:`solve` gives for it alone.
+
+        Large batches go through in passes of at most ``_PASS_ROWS`` impacts (a larger batch
+        is cut, smaller ones share a pass), so that memory stays bounded whatever the batch
+        and each pass's arrays stay in the processor's cache."""
+        jobs = [(*job[:3], _flat(job[3]), *job[4:]) for job in jobs]
+        passes = _passes([len(job[3]) for job in jobs], _PASS_ROWS)
+        if len(passes) == 1:
+            return self._solve_pass(jobs)
+        parts: list[list[ImpactOutcome]] = [[] for _ in jobs]
+        for pieces in passes:
+            sub = [(*jobs[i][:3], _rows(jobs[i][3], a, b), *jobs[i][4:]) for i, a, b in pieces]
+            for (i, _, _), outcome in zip(pieces, self._solve_pass(sub), strict=True):
+                parts[i].append(outcome)
+        return [_joined(p) for p in parts]
+
+    def _solve_pass(self, jobs) -> list[ImpactOutcome]:
+        """:meth:`solve_many` of jobs of flat batches, in one pass."""
         ready: dict[int, tuple[BatModel, BallModel, float, ImpactBatch, str, LinearSystem,
                                dict]] = {}
         for members in self._alike(jobs).values():
-            batches = [_flat(jobs[i][3]) for i in members]
+            batches = [jobs[i][3] for i in members]
             bat, ball, pivot, _, support, *rest = jobs[members[0]]
             # the jobs of one bat, ball, pivot and support share one linear system (a bat's
             # patches and barrel are read for all their rows at once), split back per job
@@ -424,6 +444,40 @@ def _flat(batch: ImpactBatch) -> ImpactBatch:
         return batch
     return ImpactBatch(*(np.ravel(a) for a in (batch.impact_location, batch.pitch_speed,
                                                batch.bat_angular_speed)))
+
+
+def _rows(batch: ImpactBatch, a: int, b: int) -> ImpactBatch:
+    return ImpactBatch(batch.impact_location[a:b], batch.pitch_speed[a:b],
+                       batch.bat_angular_speed[a:b])
+
+
+def _passes(sizes: list[int], rows: int) -> list[list[tuple[int, int, int]]]:
+    """The jobs' rows as pieces ``(job, start, stop)`` in passes of at most ``rows`` rows, in
+    order: a job of more rows is cut, smaller jobs share a pass."""
+    passes: list[list[tuple[int, int, int]]] = [[]]
+    filled = 0
+    for i, n in enumerate(sizes):
+        for a in range(0, max(n, 1), rows):
+            b = min(a + rows, n)
+            if passes[-1] and filled + b - a > rows:
+                passes.append([])
+                filled = 0
+            passes[-1].append((i, a, b))
+            filled += b - a
+    return passes
+
+
+def _joined(parts: list[ImpactOutcome]) -> ImpactOutcome:
+    """One outcome of the consecutive pieces of a job."""
+    if len(parts) == 1:
+        return parts[0]
+
+    def cat(arrays):
+        return None if arrays[0] is None else np.concatenate(arrays)
+    fields = ("exit_speed", "bat_angular_speed_after", "cor", "recoil_factor")
+    return ImpactOutcome(**{f: cat([getattr(p, f) for p in parts]) for f in fields},
+                         diagnostics={k: cat([p.diagnostics[k] for p in parts])
+                                      for k in parts[0].diagnostics})
 
 
 def _concatenate(batches: list[ImpactBatch]) -> ImpactBatch:

@@ -20,6 +20,9 @@ _TINY = 1e-300  # floor of the compression inside log() [m]
 # rows that share their modes are read and forced with one matrix product per run of them when
 # the runs average at least this many rows (else row by row; measured, bench_engine.py)
 _SHARED_ROWS = 16
+# a batch is integrated in chunks of about this many (impact, mode) entries: bounded memory,
+# and each step's arrays kept in the processor's cache (measured, bench_engine.py)
+_CHUNK_ENTRIES = 98_304
 
 
 def phi_functions(z):
@@ -153,8 +156,8 @@ class _Coefficients:
     """Per-impact constants of one ETDRK4 step (Cox & Matthews 2002, Eqs. 26-29), row i for
     impact i, in the scaled coordinates ``Y = c_y Z`` of :func:`_coefficients`.
 
-    The free contact-point motion is read from ``Y`` and a step's forcing added to it by
-    ``modal``: row by row, or with one matrix product per run of rows that share their modes."""
+    ``modal`` advances ``Y`` by a step and reads the contact point's free motion from it: row
+    by row, or with one matrix product per run of rows that share their modes."""
 
     ka: np.ndarray
     b0: np.ndarray
@@ -163,7 +166,6 @@ class _Coefficients:
     ca: np.ndarray
     w6: np.ndarray
     v6: np.ndarray
-    e1: np.ndarray  # (n, K) complex
     c_y: np.ndarray  # contact-point displacement per Im(Z): g / omega_d, (n, K)
     beta: np.ndarray
     ab: np.ndarray  # alpha - beta
@@ -171,41 +173,43 @@ class _Coefficients:
     alpha: np.ndarray  # each impact's compression exponent
     shell_factor: np.ndarray  # 1 / (2 (1 - zeta^2)): shell potential energy per Im(Z)^2
     top_seen: np.ndarray  # the largest compression ``beta`` was last evaluated at [m]
-    im_sum: np.ndarray  # sums the imaginary parts of Y as floats: (0, 1, 0, 1, ...), (2K,)
-    modal: _RowByRow | _Shared  # how the contact point reads and forces Y
+    modal: _RowByRow | _Shared  # how Y advances and the contact point reads it
 
     def take(self, keep: np.ndarray) -> _Coefficients:
-        kept = {k: v.take(keep) if k == "modal" else v if k == "im_sum" else v[keep]
-                for k, v in vars(self).items()}
+        kept = {k: v.take(keep) if k == "modal" else v[keep] for k, v in vars(self).items()}
         return _Coefficients(**kept)
 
 
 @dataclass
 class _RowByRow:
-    """Each row's own read-out ``R`` (n, 3, 2K) and forcing ``B`` (n, 3, 2K) of ``Y`` (as
-    floats): free ``y`` after h/2 and h, ``y'`` now; the change of ``Y`` per (F0, Fa + Fb, Fc)."""
+    """Each row's own propagator ``e1`` (n, K), read-out ``R`` (n, 4, 2K) and forcing ``B``
+    (n, 3, 2K) of ``Y`` (``R`` and ``B`` on ``Y`` as floats): the free ``y`` after h/2 and h,
+    ``y'`` and ``y`` now; the change of ``Y`` per (F0, Fa + Fb, Fc)."""
 
+    e1: np.ndarray
     R: np.ndarray
     B: np.ndarray
 
-    def read(self, y: np.ndarray) -> np.ndarray:
-        """The free contact-point motion read from ``y`` (``Y`` as floats, (n, 2K)), (n, 3)."""
+    def advance(self, z: np.ndarray, f: np.ndarray) -> np.ndarray:
+        """Advance ``z`` (``Y``, (n, K) complex) by one step in place under the forces ``f``
+        (n, 3); return the read-out of the new ``Y``, (n, 4)."""
+        z *= self.e1
+        y = z.view(float)
+        y += np.matmul(f[:, None, :], self.B)[:, 0, :]
         return np.matmul(self.R, y[:, :, None])[:, :, 0]
 
-    def push(self, f: np.ndarray) -> np.ndarray:
-        """The change of ``Y`` (as floats, (n, 2K)) that the forces ``f`` (n, 3) make."""
-        return np.matmul(f[:, None, :], self.B)[:, 0, :]
-
     def take(self, keep: np.ndarray) -> _RowByRow:
-        return _RowByRow(self.R[keep], self.B[keep])
+        return _RowByRow(self.e1[keep], self.R[keep], self.B[keep])
 
 
 @dataclass
 class _Shared:
-    """:class:`_RowByRow` for runs of rows that share their modes (one bat each): one read-out
-    ``R`` (runs, 2K, 3) and forcing ``P`` (runs, 3, 2K) per run, applied with one matrix
-    product per run; the forcing scaled per row by ``scale`` = ``c_y g`` (n, 2K)."""
+    """:class:`_RowByRow` for runs of rows that share their modes (one bat each): one
+    propagator ``e1`` (runs, K), read-out ``R`` (runs, 2K, 4) and forcing ``P`` (runs, 3, 2K)
+    per run, applied with one matrix product per run; the forcing scaled per row by ``scale``
+    = ``c_y g`` (n, 2K)."""
 
+    e1: np.ndarray
     R: np.ndarray
     P: np.ndarray
     scale: np.ndarray
@@ -217,26 +221,26 @@ class _Shared:
         self.spans = [(int(a), int(b), int(self.group[a]))
                       for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
 
-    def read(self, y: np.ndarray) -> np.ndarray:
+    def advance(self, z: np.ndarray, f: np.ndarray) -> np.ndarray:
+        y = z.view(float)
         if len(self.spans) == 1:
-            return y @ self.R[self.spans[0][2]]
-        out = np.empty((y.shape[0], 3))
+            g = self.spans[0][2]
+            z *= self.e1[g]
+            push = f @ self.P[g]
+            push *= self.scale
+            y += push
+            return y @ self.R[g]
+        out = np.empty((y.shape[0], 4))
         for a, b, g in self.spans:
+            z[a:b] *= self.e1[g]
+            push = f[a:b] @ self.P[g]
+            push *= self.scale[a:b]
+            y[a:b] += push
             np.matmul(y[a:b], self.R[g], out=out[a:b])
         return out
 
-    def push(self, f: np.ndarray) -> np.ndarray:
-        if len(self.spans) == 1:
-            out = f @ self.P[self.spans[0][2]]
-        else:
-            out = np.empty(self.scale.shape)
-            for a, b, g in self.spans:
-                np.matmul(f[a:b], self.P[g], out=out[a:b])
-        out *= self.scale
-        return out
-
     def take(self, keep: np.ndarray) -> _Shared:
-        return _Shared(self.R, self.P, self.scale[keep], self.group[keep])
+        return _Shared(self.e1, self.R, self.P, self.scale[keep], self.group[keep])
 
 
 @dataclass
@@ -254,6 +258,7 @@ class _State:
     u_prev: np.ndarray  # compression one step earlier [m]
     du_prev: np.ndarray  # compression rate one step earlier [m/s]
     share: np.ndarray  # barrel's share of the stored energy at the ball's maximum compression
+    base: np.ndarray  # the read-out of Y now (free y after h/2 and h, y', y), (n, 4)
     rows: np.ndarray  # index of each row in the caller's batch
 
     def take(self, keep: np.ndarray) -> _State:
@@ -266,7 +271,7 @@ class _State:
                    v=np.array(approach_speed, dtype=float).reshape(n), impulse=zeros.copy(),
                    u=zeros.copy(), u_top=np.full(n, _TINY), f_peak=zeros.copy(),
                    u_prev=zeros.copy(), du_prev=zeros.copy(),
-                   share=zeros.copy(), rows=np.arange(n))
+                   share=zeros.copy(), base=np.zeros((n, 4)), rows=np.arange(n))
 
 
 _EXP_CACHE: OrderedDict[tuple, tuple[np.ndarray, ...]] = OrderedDict()
@@ -294,8 +299,8 @@ def _coefficients(system: LinearSystem, h: float, k1, alpha, beta) -> _Coefficie
 
     The modal coordinates are kept scaled, ``Y = c_y Z`` with ``c_y = g / omega_d`` the
     contact-point displacement per ``Im(Z)``: the free motion of the contact point is then
-    ``Im(sum w Y)`` with weights ``w`` (``e^(lam h/2)``, ``e^(lam h)``, ``lam``) that depend on
-    a row's modes only, so that runs of rows sharing them (one bat) read it with one matrix
+    ``Im(sum w Y)`` with weights ``w`` (``e^(lam h/2)``, ``e^(lam h)``, ``lam``, 1) that depend
+    on a row's modes only, so that runs of rows sharing them (one bat) read it with one matrix
     product; the forcing of ``Y``, ``-c_y g (...)``, is that run's matrix scaled per row.
     """
     om, g = system.omega, system.gain
@@ -303,56 +308,69 @@ def _coefficients(system: LinearSystem, h: float, k1, alpha, beta) -> _Coefficie
     zeta = system.zeta[:, None]
     om_d = om * np.sqrt(1.0 - zeta**2)
     lam = -zeta * om + 1j * om_d
+    c_y = g / om_d  # contact-point displacement y = sum c_y Im(Z) = sum Im(Y)
+    cg = c_y * g
+    ka, c0 = np.empty(n), np.empty(n)
     # the exponentials depend on the frequencies and damping only: once per block of rows
-    # that share them (one bat), broadcast to its rows
-    e1, e2, p1, p2, p3, q_half = (np.empty((n, k_modes), complex) for _ in range(6))
-    runs: list[tuple[int, int]] | None = []  # merged blocks sharing their modes
+    # that share them (one bat); each block's propagator, read-out and forcing, (1 or rows, ..)
+    blocks = []
     for a, b in system.blocks or ((0, n),):
         same = bool(np.all(om[a:b] == om[a:a + 1])) and bool(np.all(zeta[a:b] == zeta[a]))
-        vals = _exponentials(lam[a:a + 1], h) if same else _exponentials(lam[a:b], h)
-        for target, v in zip((e1, e2, p1, p2, p3, q_half), vals, strict=True):
-            target[a:b] = v
-        if not same:
-            runs = None
-        elif runs is not None:
-            if runs and np.array_equal(om[a], om[runs[-1][0]]) \
-                    and system.zeta[a] == system.zeta[runs[-1][0]]:
-                runs[-1] = (runs[-1][0], b)
-            else:
-                runs.append((a, b))
-    c_y = g / om_d  # contact-point displacement y = sum c_y Im(Z) = sum Im(Y)
-    # Z_new = e1 Z + forcing @ (F0, Fa + Fb, Fc)  (Cox & Matthews 2002, Eq. 26)
-    push = -np.stack([h * (p1 - 3 * p2 + 4 * p3), 2 * h * (p2 - 2 * p3),
-                      h * (4 * p3 - p2)], axis=1)  # forcing of Z per unit g, (n, 3, K)
-
-    def im_weights(coef):  # Im(sum coef Y) = im_weights(coef) . Y.view(float)
-        wt = np.empty(coef.shape[:-1] + (2 * k_modes,))
-        wt[..., 0::2], wt[..., 1::2] = coef.imag, coef.real
-        return wt
-
+        lam_b = lam[a:a + 1] if same else lam[a:b]
+        e1, e2, p1, p2, p3, q_half = _exponentials(lam_b, h)
+        ka[a:b] = -(cg[a:b] * q_half.imag).sum(1)
+        c0[a:b] = -(cg[a:b] * (e2 * q_half).imag).sum(1) - ka[a:b]
+        # Z_new = e1 Z + forcing @ (F0, Fa + Fb, Fc)  (Cox & Matthews 2002, Eq. 26)
+        push = -np.stack([h * (p1 - 3 * p2 + 4 * p3), 2 * h * (p2 - 2 * p3),
+                          h * (4 * p3 - p2)], axis=1)  # forcing of Z per unit g, (., 3, K)
+        # read-outs: free y after h/2 and h, y' (= Im(sum lam Y)) and y (= Im(sum Y))
+        read = _im_weights(np.stack([e2, e1, lam_b, np.ones_like(e1)], axis=1))
+        blocks.append((a, b, same, e1, read, push))
     inv_mu = system.inv_reduced_mass
-    ka = -(c_y * g * q_half.imag).sum(1)
     per_row = [np.broadcast_to(np.asarray(x, dtype=float), (n,)).copy() for x in (k1, alpha, beta)]
     k1, alpha, beta = per_row
-    # read-outs: free y after h/2 and h, y' now (= Im(sum lam Y)); forcing of Y
     modal: _RowByRow | _Shared
+    runs = _runs(blocks, om, system.zeta)
     if runs is not None and len(runs) * _SHARED_ROWS <= max(n, _SHARED_ROWS):
-        first = [a for a, _ in runs]
+        first = [blocks[i] for i, _, _ in runs]
         modal = _Shared(
-            R=np.ascontiguousarray(im_weights(
-                np.stack([e2[first], e1[first], lam[first]], axis=1)).transpose(0, 2, 1)),
-            P=np.ascontiguousarray(push[first]).view(float),
-            scale=np.repeat(c_y * g, 2, axis=1),
-            group=np.repeat(np.arange(len(runs)), [b - a for a, b in runs]))
+            e1=np.concatenate([blk[3] for blk in first]),
+            R=np.ascontiguousarray(np.concatenate([blk[4] for blk in first]).transpose(0, 2, 1)),
+            P=np.ascontiguousarray(np.concatenate([blk[5] for blk in first])).view(float),
+            scale=np.repeat(cg, 2, axis=1),
+            group=np.repeat(np.arange(len(runs)), [b - a for _, a, b in runs]))
     else:
-        modal = _RowByRow(R=np.ascontiguousarray(im_weights(np.stack([e2, e1, lam], axis=1))),
-                          B=np.ascontiguousarray((c_y * g)[:, None, :] * push).view(float))
+        def rows(i):  # each row's copy of a block's part
+            return np.concatenate([np.broadcast_to(blk[i], (blk[1] - blk[0],) + blk[i].shape[1:])
+                                   for blk in blocks])
+        modal = _RowByRow(e1=rows(3), R=np.ascontiguousarray(rows(4)),
+                          B=np.ascontiguousarray(cg[:, None, :] * rows(5)).view(float))
     return _Coefficients(
-        ka=ka, b0=-h * h / 4 * inv_mu, c0=-(c_y * g * (e2 * q_half).imag).sum(1) - ka,
-        cb=2 * ka, ca=-h * h / 2 * inv_mu, w6=-h * h / 6 * inv_mu,
-        v6=-h / 6 * inv_mu, e1=e1, c_y=c_y, beta=beta, ab=alpha - beta, lk1=np.log(k1),
-        alpha=alpha, shell_factor=0.5 / (1.0 - system.zeta**2), top_seen=np.full(n, np.nan),
-        im_sum=np.tile([0.0, 1.0], k_modes), modal=modal)
+        ka=ka, b0=-h * h / 4 * inv_mu, c0=c0, cb=2 * ka, ca=-h * h / 2 * inv_mu,
+        w6=-h * h / 6 * inv_mu, v6=-h / 6 * inv_mu, c_y=c_y, beta=beta, ab=alpha - beta,
+        lk1=np.log(k1), alpha=alpha, shell_factor=0.5 / (1.0 - system.zeta**2),
+        top_seen=np.full(n, np.nan), modal=modal)
+
+
+def _im_weights(coef: np.ndarray) -> np.ndarray:
+    """Weights ``wt`` with ``Im(sum coef Y) = wt . Y.view(float)``, (..., 2K)."""
+    wt = np.empty(coef.shape[:-1] + (2 * coef.shape[-1],))
+    wt[..., 0::2], wt[..., 1::2] = coef.imag, coef.real
+    return wt
+
+
+def _runs(blocks: list, om: np.ndarray, zeta: np.ndarray) -> list[tuple[int, int, int]] | None:
+    """Runs of consecutive blocks that share their modes, ``(first block, start, stop)``; None
+    if some block's rows have modes of their own."""
+    runs: list[tuple[int, int, int]] = []
+    for i, (a, b, same, *_) in enumerate(blocks):
+        if not same:
+            return None
+        if runs and np.array_equal(om[a], om[runs[-1][1]]) and zeta[a] == zeta[runs[-1][1]]:
+            runs[-1] = (runs[-1][0], runs[-1][1], b)
+        else:
+            runs.append((i, a, b))
+    return runs
 
 
 def _force(c: _Coefficients, x: np.ndarray, l_top: np.ndarray) -> np.ndarray:
@@ -374,7 +392,7 @@ def _step(st: _State, c: _Coefficients, h: float, shell: slice | None) -> np.nda
     is taken when the ball's compression peaks (the stored energies' largest moment, within the
     shell's lag), where the ball holds ``k1 u_top^(1 + alpha) / (1 + alpha)``.
     """
-    base = c.modal.read(st.z.view(float))
+    base = st.base
     u2 = base[:, 0] + st.w + 0.5 * h * st.v
     u1 = base[:, 1] + st.w + h * st.v
     du = st.v + base[:, 2]
@@ -398,10 +416,10 @@ def _step(st: _State, c: _Coefficients, h: float, shell: slice | None) -> np.nda
     fb = _force(c, u2 + c.ka * fa + c.b0 * f0, l_top)
     fc = f[:, 2] = _force(c, u1 + c.c0 * f0 + c.cb * fb + c.ca * fa, l_top)
     fab = f[:, 1] = fa + fb
-    st.z = c.e1 * st.z + c.modal.push(f).view(complex)
+    st.base = c.modal.advance(st.z, f)
     s4 = f0 + 2.0 * fab + fc
     st.w = st.w + h * st.v + c.w6 * (f0 + fab)
-    u_new = st.z.view(float) @ c.im_sum + st.w  # y = sum Im(Y), u = y + w
+    u_new = st.base[:, 3] + st.w  # y = sum Im(Y), u = y + w
     st.v = st.v + c.v6 * s4
     st.impulse = st.impulse + (h / 6.0) * s4
     st.f_peak = np.maximum(st.f_peak, f0)
@@ -410,7 +428,7 @@ def _step(st: _State, c: _Coefficients, h: float, shell: slice | None) -> np.nda
 
 
 def march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: float,
-          max_time: float, restitution=None, chunk: int = 4096) -> Separation:
+          max_time: float, restitution=None, chunk: int | None = None) -> Separation:
     """Integrate all impacts from first touch to separation (ETDRK4; module notes).
 
     State per impact (:class:`_State`): complex modal coordinates ``Z`` (n, K), the merged
@@ -420,8 +438,9 @@ def march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: floa
     ``u_c = U1 + c0 F0 + cb Fb + ca Fa`` and at the step end ``U1 + n0 F0 + n1 (Fa + Fb) +
     n2 Fc``, where ``U2``, ``U1`` are the free (force-less) motions over h/2 and h, read from
     ``Z`` with one matrix product. Finished impacts are recorded and, once they are many,
-    dropped from the arrays (:meth:`_State.take`). Batches larger than ``chunk`` impacts are
-    integrated ``chunk`` at a time, so that memory stays bounded whatever the batch.
+    dropped from the arrays (:meth:`_State.take`). Batches larger than ``chunk`` impacts
+    (default: about ``_CHUNK_ENTRIES`` impact-mode entries) are integrated ``chunk`` at a
+    time, so that memory stays bounded whatever the batch.
 
     Parameters
     ----------
@@ -443,7 +462,9 @@ def march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: floa
         (:func:`contact.compression_restitution`), re-evaluated every step; without it ``beta``
         stays as given.
     """
-    n = system.omega.shape[0]
+    n, k_modes = system.omega.shape
+    if chunk is None:
+        chunk = max(256, _CHUNK_ENTRIES // max(k_modes, 1))
     if n <= chunk:
         return _march(system, k1, alpha, beta, approach_speed, time_step, max_time, restitution)
     k1, alpha, beta, speed = (np.broadcast_to(np.asarray(x, dtype=float), (n,))

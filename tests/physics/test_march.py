@@ -67,7 +67,7 @@ def test_shared_runs_and_row_by_row_give_the_same_impacts(impacts, monkeypatch, 
 def test_the_runs_of_shared_modes_follow_the_rows_that_are_kept():
     # dropping finished rows keeps each remaining row with its own run's matrices
     group = np.array([0, 0, 0, 1, 1, 2, 2, 2])
-    modal = march._Shared(R=np.zeros((3, 4, 3)), P=np.zeros((3, 3, 4)),
+    modal = march._Shared(e1=np.ones((3, 2), complex), R=np.zeros((3, 4, 4)), P=np.zeros((3, 3, 4)),
                           scale=np.arange(8.0)[:, None] * np.ones(4), group=group)
     assert modal.spans == [(0, 3, 0), (3, 5, 1), (5, 8, 2)]
     kept = modal.take(np.array([1, 2, 5, 7]))

@@ -358,17 +358,52 @@ def clear_barrel_cache() -> None:
     _LAST.clear()
 
 
-def _w_load(shell: ShellOfRevolution, points: np.ndarray, weights: np.ndarray) -> np.ndarray:
-    """Each impact's patch as W-space load (unit resultant), shape (p, 3N): the weights with
-    which :func:`~batcert.physics.shell.normal_reader` reads ``W`` from the nodes' ``u_z``,
-    ``u_r``, ``W'``."""
+@dataclass(frozen=True)
+class PatchLoads:
+    """Each impact's patch as W-space load (unit resultant), banded: row ``i`` loads the
+    unknowns ``start[i] .. start[i] + width`` with ``f[i]`` (a patch covers a few nodes), in
+    the layout of ``size`` unknowns (``u_z``, ``u_r``, ``W'`` per node)."""
+
+    start: np.ndarray  # (p,) int
+    f: np.ndarray  # (p, width)
+    size: int
+
+    def dense(self) -> np.ndarray:
+        """The loads as full rows, (p, size)."""
+        g = np.zeros((self.f.shape[0], self.size))
+        np.put_along_axis(g, self.start[:, None] + np.arange(self.f.shape[1]), self.f, axis=1)
+        return g
+
+    def by_start(self):
+        """``(s, rows)`` for each window start ``s``: the rows (indices) that start there."""
+        order = np.argsort(self.start, kind="stable")
+        starts, first = np.unique(self.start[order], return_index=True)
+        bounds = np.append(first, order.size)
+        return [(int(s), order[a:b]) for s, a, b in zip(starts, bounds[:-1], bounds[1:],
+                                                         strict=True)]
+
+
+def _w_load(shell: ShellOfRevolution, points: np.ndarray, weights: np.ndarray) -> PatchLoads:
+    """Each impact's patch as W-space load: the weights with which
+    :func:`~batcert.physics.shell.normal_reader` reads ``W`` from the nodes' ``u_z``, ``u_r``,
+    ``W'``, gathered into one window per patch (the widest patch's width, the window moved
+    inside the wall at its ends); a patch off the wall loads nothing."""
     p = points.shape[0]
     cols, h = normal_reader(shell, 2, points)  # order 2's layout: 5 dofs per node
     node, slot = np.divmod(cols, 5)
-    w_cols = 3 * node + np.select([slot == 0, slot == 3], [0, 1], 2)
+    w_cols = (3 * node + np.select([slot == 0, slot == 3], [0, 1], 2)).reshape(p, -1)
+    values = (h * weights[..., None]).reshape(p, -1)
     size = 3 * shell.z.size
-    flat = (np.arange(p)[:, None, None] * size + w_cols).ravel()
-    return np.bincount(flat, (h * weights[..., None]).ravel(), p * size).reshape(p, size)
+    live = values != 0
+    lo = np.where(live, w_cols, size).min(axis=1)
+    hi = np.where(live, w_cols, -1).max(axis=1)
+    on = hi >= 0
+    width = int((hi - lo)[on].max(initial=0)) + 1
+    start = np.where(on, np.clip(lo, 0, size - width), 0)
+    local = np.where(live, w_cols - start[:, None], 0)
+    f = np.bincount((np.arange(p)[:, None] * width + local).ravel(), values.ravel(),
+                    p * width).reshape(p, width)
+    return PatchLoads(start, f, size)
 
 
 def patch_half_angle(bat: BatModel, z: np.ndarray, half_length: np.ndarray) -> np.ndarray:
@@ -412,13 +447,17 @@ def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray
         consistent load of the axial patch (:func:`_patch_flexibility`); ``residual`` is
         ``static`` minus the kept modes' ``sum (gain / omega)^2``.
     """
-    g = _w_load(barrel.shell, points, weights)  # (p, 3N)
+    loads = _w_load(barrel.shell, points, weights)
     angles, which = np.unique(half_angle, return_inverse=True)  # often one patch size
     c = _factors(barrel.orders, angles)[:, which.ravel()]  # (orders, p)
-    static = barrel.green_scale * (c**2 * _patch_flexibility(barrel.green, g)).sum(axis=0)
+    static = barrel.green_scale * (c**2 * _patch_flexibility(barrel.green, loads)).sum(axis=0)
     order_row = {n: i for i, n in enumerate(barrel.orders)}
     factor = c[[order_row[n] for n in barrel.mode_orders]].T  # (p, m)
-    gain = factor * (g @ barrel.shapes)
+    shapes = np.empty((loads.f.shape[0], barrel.shapes.shape[1]))  # W_j over each patch
+    width = loads.f.shape[1]
+    for s0, rows in loads.by_start():
+        shapes[rows] = loads.f[rows] @ barrel.shapes[s0:s0 + width]
+    gain = factor * shapes
     modal = (gain**2 / barrel.omega**2).sum(axis=1)
     return BarrelResponse(barrel.omega, gain, np.clip(static - modal, 0.0, None), static,
                           barrel.mode_orders)
@@ -441,54 +480,41 @@ def _factors_of(orders: tuple[int, ...], angles: bytes) -> np.ndarray:
 _PATCH_CACHE: OrderedDict[tuple, tuple[np.ndarray, np.ndarray]] = OrderedDict()
 
 
-def _patch_flexibility(green: np.ndarray, g: np.ndarray) -> np.ndarray:
+def _patch_flexibility(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
     """``q[n, i] = g_i^T G_n g_i`` for every order and patch, (orders, p).
 
     A patch loads only the few nodes it covers, a contiguous band of the W space, so each patch
-    reads a band of every order's flexibility (a view, no copy); patches with the same band are
-    done together. Memoised on the wall and the loads (LRU): a scaled wall (calibration, the
-    uncertainty range) shares its nominal flexibility, and the runner asks again for the same
-    points.
+    reads a band of every order's flexibility; patches with the same band are done together.
+    Memoised on the wall and the loads (LRU): a scaled wall (calibration, the uncertainty
+    range) shares its nominal flexibility, and the runner asks again for the same points.
     """
-    key = (id(green), g.shape, hashlib.sha1(g.tobytes()).digest())
+    digest = hashlib.sha1(loads.start.tobytes())
+    digest.update(loads.f.tobytes())
+    key = (id(green), loads.f.shape, digest.digest())
     hit = _PATCH_CACHE.get(key)
     if hit is not None and hit[0] is green:
         _PATCH_CACHE.move_to_end(key)
         return hit[1]
-    q = _patch_flexibility_of(green, g)
+    q = _patch_flexibility_of(green, loads)
     _PATCH_CACHE[key] = (green, q)
     while len(_PATCH_CACHE) > 64:
         _PATCH_CACHE.popitem(last=False)
     return q
 
 
-def _patch_flexibility_of(green: np.ndarray, g: np.ndarray) -> np.ndarray:
-    """:func:`_patch_flexibility` computed: each patch's load read over a window of ``L``
-    unknowns (its longest patch's) from the band's start ``s``, ``q = sum_k sum_d c_d
-    f_k f_(k+d) G(s + k, s + k + d)`` with ``c_0 = 1``, ``c_d = 2`` (``G`` symmetric), one
-    matrix product per window start."""
-    nz = g != 0
-    on = np.flatnonzero(nz.any(axis=1))  # a patch off the wall reads nothing
-    q = np.zeros((green.shape[0], g.shape[0]))
-    if on.size == 0:
-        return q
-    size = g.shape[1]
-    lo = np.argmax(nz[on], axis=1)
-    width = int((size - np.argmax(nz[on, ::-1], axis=1) - lo).max())
+def _patch_flexibility_of(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
+    """:func:`_patch_flexibility` computed: each patch's load ``f`` read over its window from
+    the start ``s``, ``q = sum_(k <= j) c_kj f_k f_j G(s + k, s + j)`` with ``c_kk = 1``,
+    ``c_kj = 2`` (``G`` symmetric, stored as its upper band), one matrix product per start."""
+    width = loads.f.shape[1]
     if width > green.shape[2]:
         raise ValueError(f"a contact patch is longer than {PATCH_SPAN} m")
-    start = np.minimum(lo, size - width)
-    f = np.zeros((on.size, 2 * width))  # each load from its start, zero-padded
-    f[:, :width] = g[on[:, None], start[:, None] + np.arange(width)]
-    pairs = f[:, :width, None] * np.lib.stride_tricks.sliding_window_view(
-        f, width, axis=1)[:, :width, :]  # f_k f_(k+d), (patches, k, d)
-    pairs[:, :, 1:] *= 2.0
-    pairs = pairs.reshape(on.size, -1)
-    starts, which = np.unique(start, return_inverse=True)
-    for k, s in enumerate(starts):
-        rows = np.flatnonzero(which.ravel() == k)
-        window = green[:, s:s + width, :width].reshape(green.shape[0], -1)
-        q[:, on[rows]] = window @ pairs[rows].T
+    k, j = np.triu_indices(width)
+    pairs = loads.f[:, k] * loads.f[:, j]  # (p, width (width + 1) / 2)
+    pairs[:, k != j] *= 2.0
+    q = np.empty((green.shape[0], loads.f.shape[0]))
+    for s, rows in loads.by_start():
+        q[:, rows] = green[:, s + k, j - k] @ pairs[rows].T
     return q
 
 

@@ -105,8 +105,9 @@ def test_the_band_covers_the_longest_patch_a_ball_spec_allows(wall):
     z = np.array([0.45, 0.6, sh.z[0] + 0.002, sh.z[-1] - 0.002])
     half = np.full(z.size, 0.1)
     points = z[:, None] + half[:, None] * np.linspace(-1, 1, 15)[None, :]
-    g = barrel._w_load(sh, points, np.full(points.shape, 1 / 15))
-    band = barrel._patch_flexibility_of(modes.green, g)
+    loads = barrel._w_load(sh, points, np.full(points.shape, 1 / 15))
+    band = barrel._patch_flexibility_of(modes.green, loads)
+    g = loads.dense()
     for o, n in enumerate(modes.orders[:3]):
         dense = np.einsum("pi,ij,pj->p", g, _dense_flexibility(sh, n), g)
         np.testing.assert_allclose(band[o], dense, rtol=1e-9)
@@ -125,14 +126,18 @@ def test_patches_of_different_lengths_read_together(wall):
     z = np.array([0.45, 0.47, 0.6, sh.z[0] + 0.002, sh.z[-1] - 0.002, sh.z[0] - 0.15])
     half = np.array([0.1, 0.01, 0.03, 0.05, 0.1, 0.02])
     points = z[:, None] + half[:, None] * np.linspace(-1, 1, 15)[None, :]
-    g = barrel._w_load(sh, points, np.full(points.shape, 1 / 15))
+    weights = np.full(points.shape, 1 / 15)
+    loads = barrel._w_load(sh, points, weights)
+    g = loads.dense()
     assert not g[-1].any()
-    together = barrel._patch_flexibility_of(modes.green, g)
+    together = barrel._patch_flexibility_of(modes.green, loads)
     for o, n in enumerate(modes.orders[:3]):
         dense = np.einsum("pi,ij,pj->p", g, _dense_flexibility(sh, n), g)
         np.testing.assert_allclose(together[o, :-1], dense[:-1], rtol=1e-9)
     np.testing.assert_array_equal(together[:, -1], 0.0)
-    for i in range(z.size - 1):
+    for i in range(z.size - 1):  # alone, a patch has its own window
+        alone = barrel._w_load(sh, points[i:i + 1], weights[i:i + 1])
+        np.testing.assert_allclose(alone.dense()[0], g[i], rtol=1e-15)
         np.testing.assert_allclose(together[:, i],
-                                   barrel._patch_flexibility_of(modes.green, g[i:i + 1])[:, 0],
+                                   barrel._patch_flexibility_of(modes.green, alone)[:, 0],
                                    rtol=1e-13)

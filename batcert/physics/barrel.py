@@ -383,6 +383,10 @@ class PatchLoads:
                                                          strict=True)]
 
 
+# order 2's unknowns per node (u_z, V, V', u_r, W') -> slots of the W space (u_z, u_r, W')
+_W_SLOT = np.array([0, 2, 2, 1, 2])
+
+
 def _w_load(shell: ShellOfRevolution, points: np.ndarray, weights: np.ndarray) -> PatchLoads:
     """Each impact's patch as W-space load: the weights with which
     :func:`~batcert.physics.shell.normal_reader` reads ``W`` from the nodes' ``u_z``, ``u_r``,
@@ -391,7 +395,7 @@ def _w_load(shell: ShellOfRevolution, points: np.ndarray, weights: np.ndarray) -
     p = points.shape[0]
     cols, h = normal_reader(shell, 2, points)  # order 2's layout: 5 dofs per node
     node, slot = np.divmod(cols, 5)
-    w_cols = (3 * node + np.select([slot == 0, slot == 3], [0, 1], 2)).reshape(p, -1)
+    w_cols = (3 * node + _W_SLOT[slot]).reshape(p, -1)
     values = (h * weights[..., None]).reshape(p, -1)
     size = 3 * shell.z.size
     live = values != 0
@@ -503,18 +507,20 @@ def _patch_flexibility(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
 
 
 def _patch_flexibility_of(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
-    """:func:`_patch_flexibility` computed: each patch's load ``f`` read over its window from
-    the start ``s``, ``q = sum_(k <= j) c_kj f_k f_j G(s + k, s + j)`` with ``c_kk = 1``,
-    ``c_kj = 2`` (``G`` symmetric, stored as its upper band), one matrix product per start."""
+    """:func:`_patch_flexibility` computed: each patch's load ``f`` read over its window of
+    ``L`` unknowns from the start ``s``, ``q_n = f^T G_n(s:s+L, s:s+L) f`` (``G`` symmetric,
+    stored as its upper band); per start, one matrix product of the loads with every order's
+    window, then each product dotted with its own load."""
     width = loads.f.shape[1]
     if width > green.shape[2]:
         raise ValueError(f"a contact patch is longer than {PATCH_SPAN} m")
-    k, j = np.triu_indices(width)
-    pairs = loads.f[:, k] * loads.f[:, j]  # (p, width (width + 1) / 2)
-    pairs[:, k != j] *= 2.0
+    k = np.arange(width)
+    row, lag = np.minimum.outer(k, k), np.abs(np.subtract.outer(k, k))  # G(s+k, s+j) in band
     q = np.empty((green.shape[0], loads.f.shape[0]))
     for s, rows in loads.by_start():
-        q[:, rows] = green[:, s + k, j - k] @ pairs[rows].T
+        window = green[:, s + row, lag].transpose(1, 0, 2).reshape(width, -1)  # (L, orders L)
+        f = loads.f[rows]
+        q[:, rows] = np.einsum("pnk,pk->np", (f @ window).reshape(rows.size, -1, width), f)
     return q
 
 

@@ -27,14 +27,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from batcert.physics.batmodel import BatModel
+from batcert.physics.quadrature import GAUSS_POINTS, GAUSS_WEIGHTS
 
 SUPPORTS = ("free", "pinned")
 N_RIGID = {"free": 2, "pinned": 1}
 _SNAP = 1e-3  # an inserted point closer than this fraction of its element's length reuses the node
-
-_GX, _GW = np.polynomial.legendre.leggauss(4)
-_XI = 0.5 * (_GX + 1.0)  # Gauss points on [0, 1]
-_WXI = 0.5 * _GW  # weights on [0, 1]
 
 
 @dataclass(frozen=True)
@@ -124,8 +121,8 @@ def element_matrices(length, bending_stiffness, shear_stiffness, linear_density,
     k[:, 2] = -k[:, 0]
     k[:, 3] = np.stack([6 * L, (2 - phi) * L**2, -6 * L, (4 + phi) * L**2], axis=-1)
     k *= a[:, None, None]
-    n_w, n_t, _, _ = shape_functions(_XI, L, phi)
-    wq = _WXI[None, :] * L[:, None]  # quadrature weights [m], (e, q)
+    n_w, n_t, _, _ = shape_functions(GAUSS_POINTS, L, phi)
+    wq = GAUSS_WEIGHTS[None, :] * L[:, None]  # quadrature weights [m], (e, q)
     mu = np.asarray(linear_density, dtype=float)[:, None] * wq
     ri = np.asarray(rotary_inertia, dtype=float)[:, None] * wq
     m = np.einsum("eq,eqi,eqj->eij", mu, n_w, n_w) + np.einsum("eq,eqi,eqj->eij", ri, n_t, n_t)

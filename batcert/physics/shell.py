@@ -53,10 +53,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from batcert.physics.banded import lower_band
+from batcert.physics.quadrature import GAUSS_POINTS, GAUSS_WEIGHTS
 
-_GX, _GW = np.polynomial.legendre.leggauss(4)
-_XI = 0.5 * (_GX + 1.0)
-_WXI = 0.5 * _GW
 ENDS = ("open", "closed")  # an open edge, or one held round by a rigid cap (V = W = 0)
 
 
@@ -218,10 +216,10 @@ class Assembler:
         nu = shell.poisson_ratio
         law = np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0], [0.0, 0.0, 0.5 * (1 - nu)]])
         e_plane = shell.youngs_modulus / (1 - nu**2)
-        wq = np.pi * _WXI[None, :] * shell.lengths[:, None]
-        bm = [_strain_matrices(shell, v, _XI, layout=1)[0] for v in (0.0, 1.0)]
-        bb = [_strain_matrices(shell, v, _XI, layout=1)[1] for v in (0.0, 1.0, 2.0)]
-        disp, r = _strain_matrices(shell, 1.0, _XI, layout=1)[2:]
+        wq = np.pi * GAUSS_WEIGHTS[None, :] * shell.lengths[:, None]
+        bm = [_strain_matrices(shell, v, GAUSS_POINTS, layout=1)[0] for v in (0.0, 1.0)]
+        bb = [_strain_matrices(shell, v, GAUSS_POINTS, layout=1)[1] for v in (0.0, 1.0, 2.0)]
+        disp, r = _strain_matrices(shell, 1.0, GAUSS_POINTS, layout=1)[2:]
         mem = [bm[0], bm[1] - bm[0]]  # B_m = mem[0] + n mem[1]
         c2 = 0.5 * (bb[2] - 2 * bb[1] + bb[0])
         ben = [bb[0], bb[1] - bb[0] - c2, c2]  # B_b = ben[0] + n ben[1] + n^2 ben[2]
@@ -278,7 +276,7 @@ def _quadrature(weight: np.ndarray, a: np.ndarray, law: np.ndarray | None,
 def element_matrices(shell: ShellOfRevolution, n: int):
     """Stiffness and mass matrices of every element for order ``n``, shape (e, d, d), the
     ``theta`` integral included (``pi``, or ``2 pi`` for ``n = 0``)."""
-    b_m, b_b, disp, r = _strain_matrices(shell, n, _XI)
+    b_m, b_b, disp, r = _strain_matrices(shell, n, GAUSS_POINTS)
     nu = shell.poisson_ratio
     law = np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0], [0.0, 0.0, 0.5 * (1 - nu)]])
     if n == 0:  # sin^2 terms (gamma, tau, v) integrate to zero
@@ -287,7 +285,7 @@ def element_matrices(shell: ShellOfRevolution, n: int):
     c_m = e_plane * shell.thickness
     c_b = e_plane * shell.thickness**3 / 12.0
     factor = 2 * np.pi if n == 0 else np.pi
-    wq = factor * _WXI[None, :] * shell.lengths[:, None] * r  # (e, q)
+    wq = factor * GAUSS_WEIGHTS[None, :] * shell.lengths[:, None] * r  # (e, q)
     k = (_quadrature(wq * c_m[:, None], b_m, law, b_m)
          + _quadrature(wq * c_b[:, None], b_b, law, b_b))
     rho_t = (shell.density * shell.thickness)[:, None] * wq

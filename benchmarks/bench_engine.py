@@ -19,6 +19,7 @@ import argparse
 import json
 import sys
 import time
+import tracemalloc
 from pathlib import Path
 
 import numpy as np
@@ -170,6 +171,14 @@ def large_batches(engine: FlexibleEngine, quick: bool) -> None:
             rate = n / (time.perf_counter() - t0)
             report(f"impacts_per_s_{name}_{n}", f"{name:<13} {n:>7} random impacts in one "
                    f"batch: {rate:8.0f} impacts per second  [target 50,000]", rate)
+            if n in (sizes[0], sizes[-1]):  # memory stays bounded: passes and chunks
+                clear_engine_caches()
+                tracemalloc.start()
+                engine.solve(bat, ball, 0.1524, batch)
+                peak = tracemalloc.get_traced_memory()[1] / 1e6
+                tracemalloc.stop()
+                report(f"peak_mb_{name}_{n}", f"{name:<13} {n:>7} random impacts, peak memory "
+                       f"allocated: {peak:7.1f} MB ({peak * 1e3 / n:.1f} kB per impact)", peak)
 
 
 def accuracy() -> None:

@@ -304,7 +304,7 @@ def _coefficients(system: LinearSystem, h: float, k1, alpha, beta) -> _Coefficie
     product; the forcing of ``Y``, ``-c_y g (...)``, is that run's matrix scaled per row.
     """
     om, g = system.omega, system.gain
-    n, k_modes = om.shape
+    n = om.shape[0]
     zeta = system.zeta[:, None]
     om_d = om * np.sqrt(1.0 - zeta**2)
     lam = -zeta * om + 1j * om_d

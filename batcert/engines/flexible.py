@@ -46,13 +46,14 @@ point's speed after impact), the rigid-body equivalent of what the vibrating bat
 
 from __future__ import annotations
 
+import hashlib
 from collections import OrderedDict
 from collections.abc import Callable
 
 import numpy as np
 
 from batcert.engines.base import ImpactBatch, ImpactOutcome
-from batcert.physics import contact, rigid
+from batcert.physics import contact, rigid, stores
 from batcert.physics.ball import BallModel
 from batcert.physics.batmodel import BatModel
 from batcert.physics.march import LinearSystem, Separation, march, stack_systems
@@ -243,8 +244,11 @@ class FlexibleEngine:
                  ) -> tuple[np.ndarray, np.ndarray]:
         """The modes' shapes averaged over each patch, (p, modes), and the truncated modes'
         residual compliance there, (p,) (zero without ``residual``); memoised on the modes and
-        the patches, which recur (a barrel's variants, the same points in several runs)."""
-        key = (id(modes), self.residual, points.shape, points.tobytes(), weights.tobytes())
+        the patches, which recur (a barrel's variants, the same points in several runs); a
+        batch of more than ``stores.MEMO_ROWS`` impacts is not kept."""
+        digest = hashlib.sha1(points.tobytes())
+        digest.update(weights.tobytes())
+        key = (id(modes), self.residual, points.shape, digest.digest())
         hit = _BEAM_CACHE.get(key)
         if hit is not None and hit[0] is modes:
             _BEAM_CACHE.move_to_end(key)
@@ -256,6 +260,8 @@ class FlexibleEngine:
         residual = np.zeros(points.shape[0])
         if self.residual:
             residual = residual_compliance(bat, modes, points, weights, reader=reader)
+        if points.shape[0] > stores.MEMO_ROWS:
+            return phi, residual
         _BEAM_CACHE[key] = (modes, phi, residual)
         while len(_BEAM_CACHE) > 256:
             _BEAM_CACHE.popitem(last=False)

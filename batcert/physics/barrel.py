@@ -469,8 +469,11 @@ def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray
 
 def _factors(orders: tuple[int, ...], angles: np.ndarray) -> np.ndarray:
     """:func:`~batcert.physics.shell.circumferential_factor` of every order at every angle,
-    (orders, angles), read-only; memoised: a barrel's variants and the runner's repeated points
-    ask for the same patch sizes."""
+    (orders, angles), read-only; memoised (at most ``stores.MEMO_ROWS`` angles): a barrel's
+    variants and the runner's repeated points ask for the same patch sizes."""
+    if angles.size > stores.MEMO_ROWS:
+        return circumferential_factor(np.asarray(orders)[:, None],
+                                      angles.astype(float)[None, :])
     return _factors_of(orders, angles.astype(float).tobytes())
 
 
@@ -489,8 +492,9 @@ def _patch_flexibility(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
 
     A patch loads only the few nodes it covers, a contiguous band of the W space, so each patch
     reads a band of every order's flexibility; patches with the same band are done together.
-    Memoised on the wall and the loads (LRU): a scaled wall (calibration, the uncertainty
-    range) shares its nominal flexibility, and the runner asks again for the same points.
+    Memoised on the wall and the loads (LRU, batches of at most ``stores.MEMO_ROWS``): a
+    scaled wall (calibration, the uncertainty range) shares its nominal flexibility, and the
+    runner asks again for the same points.
     """
     digest = hashlib.sha1(loads.start.tobytes())
     digest.update(loads.f.tobytes())
@@ -500,6 +504,8 @@ def _patch_flexibility(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
         _PATCH_CACHE.move_to_end(key)
         return hit[1]
     q = _patch_flexibility_of(green, loads)
+    if loads.f.shape[0] > stores.MEMO_ROWS:
+        return q
     _PATCH_CACHE[key] = (green, q)
     while len(_PATCH_CACHE) > 64:
         _PATCH_CACHE.popitem(last=False)

@@ -32,6 +32,10 @@ CODE = {
 }
 
 _STORES: dict[str, Store] = {}
+# the in-process memos (a bat's patch readings, a barrel's patch flexibilities) keep batches of
+# at most this many impacts: those recur (a barrel's variants, the runner's repeated points);
+# the passes of a large random batch do not, and would each hold about a megabyte
+MEMO_ROWS = 2048
 
 
 def use(kind: str, store: Store | None) -> None:

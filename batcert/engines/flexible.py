@@ -245,7 +245,9 @@ class FlexibleEngine:
         """The modes' shapes averaged over each patch, (p, modes), and the truncated modes'
         residual compliance there, (p,) (zero without ``residual``); memoised on the modes and
         the patches, which recur (a barrel's variants, the same points in several runs); a
-        batch of more than ``stores.MEMO_ROWS`` impacts is not kept."""
+        batch of more than ``stores.MEMO_ROWS`` impacts is neither looked up nor kept."""
+        if points.shape[0] > stores.MEMO_ROWS:
+            return self._beam_computed(bat, modes, points, weights)
         digest = hashlib.sha1(points.tobytes())
         digest.update(weights.tobytes())
         key = (id(modes), self.residual, points.shape, digest.digest())
@@ -253,6 +255,15 @@ class FlexibleEngine:
         if hit is not None and hit[0] is modes:
             _BEAM_CACHE.move_to_end(key)
             return hit[1], hit[2]
+        phi, residual = self._beam_computed(bat, modes, points, weights)
+        _BEAM_CACHE[key] = (modes, phi, residual)
+        while len(_BEAM_CACHE) > 256:
+            _BEAM_CACHE.popitem(last=False)
+        return phi, residual
+
+    def _beam_computed(self, bat: BatModel, modes: Modes, points: np.ndarray,
+                       weights: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`_beam_at` computed."""
         from batcert.physics.residual import patch_reader, residual_compliance
 
         reader = patch_reader(modes.z, points, weights)  # (p, nodes), as Modes.at reads
@@ -260,11 +271,6 @@ class FlexibleEngine:
         residual = np.zeros(points.shape[0])
         if self.residual:
             residual = residual_compliance(bat, modes, points, weights, reader=reader)
-        if points.shape[0] > stores.MEMO_ROWS:
-            return phi, residual
-        _BEAM_CACHE[key] = (modes, phi, residual)
-        while len(_BEAM_CACHE) > 256:
-            _BEAM_CACHE.popitem(last=False)
         return phi, residual
 
     def _shell(self, bat: BatModel, points, weights, half, extras: dict):

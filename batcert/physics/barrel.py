@@ -471,10 +471,10 @@ def _factors(orders: tuple[int, ...], angles: np.ndarray) -> np.ndarray:
     """:func:`~batcert.physics.shell.circumferential_factor` of every order at every angle,
     (orders, angles), read-only; memoised (at most ``stores.MEMO_ROWS`` angles): a barrel's
     variants and the runner's repeated points ask for the same patch sizes."""
+    key = angles.astype(float).tobytes()
     if angles.size > stores.MEMO_ROWS:
-        return circumferential_factor(np.asarray(orders)[:, None],
-                                      angles.astype(float)[None, :])
-    return _factors_of(orders, angles.astype(float).tobytes())
+        return _factors_of.__wrapped__(orders, key)  # computed alike, not kept
+    return _factors_of(orders, key)
 
 
 @lru_cache(maxsize=64)
@@ -496,6 +496,8 @@ def _patch_flexibility(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
     scaled wall (calibration, the uncertainty range) shares its nominal flexibility, and the
     runner asks again for the same points.
     """
+    if loads.f.shape[0] > stores.MEMO_ROWS:
+        return _patch_flexibility_of(green, loads)
     digest = hashlib.sha1(loads.start.tobytes())
     digest.update(loads.f.tobytes())
     key = (id(green), loads.f.shape, digest.digest())
@@ -504,8 +506,6 @@ def _patch_flexibility(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
         _PATCH_CACHE.move_to_end(key)
         return hit[1]
     q = _patch_flexibility_of(green, loads)
-    if loads.f.shape[0] > stores.MEMO_ROWS:
-        return q
     _PATCH_CACHE[key] = (green, q)
     while len(_PATCH_CACHE) > 64:
         _PATCH_CACHE.popitem(last=False)

@@ -754,5 +754,46 @@ def list_(kind, as_json):
                             [[i["name"], i["title"], i["path"]] for i in items]), k)
 
 
+def entry() -> None:
+    """The installed ``batcert`` command (and ``python -m batcert``): :func:`main`, then an exit
+    that skips the interpreter's teardown.
+
+    Freeing every module and object at exit costs 15-25 ms after numpy, jinja2 and the specs
+    are loaded (measured: ``import numpy`` alone 94 ms with teardown, 74 ms without), a tenth of
+    a rigid run, and does nothing a finished command needs. What exit does that matters still
+    happens first: the ``atexit`` handlers run (temporary-file finalisers, logging, a profiler's
+    save) and stdout and stderr are flushed. The reports are closed and renamed before
+    ``main`` returns (:mod:`batcert.reports.write`). While another non-daemon thread is alive
+    (a pool still winding down) the normal exit is used, which waits for it."""
+    try:
+        main(prog_name="batcert")
+    except SystemExit as done:
+        _exit_now(done.code)
+
+
+def _exit_now(code) -> None:
+    import atexit
+    import threading
+    run_exit_handlers = getattr(atexit, "_run_exitfuncs", None)
+    if run_exit_handlers is None or threading.active_count() > 1:
+        sys.exit(code)
+    if code is None:
+        status = 0
+    elif isinstance(code, int):
+        status = code
+    else:  # as the interpreter does for sys.exit("message")
+        print(code, file=sys.stderr)
+        status = 1
+    run_exit_handlers()
+    for stream in (sys.stdout, sys.stderr):
+        if stream is None or stream.closed:
+            continue
+        try:
+            stream.flush()
+        except OSError:  # a closed pipe: the status the interpreter's own flush exits with
+            status = 120
+    os._exit(status & 0xFF)
+
+
 if __name__ == "__main__":
-    main()
+    entry()

@@ -29,7 +29,6 @@ from __future__ import annotations
 
 import hashlib
 import math
-from collections import OrderedDict
 from dataclasses import dataclass, replace
 from functools import lru_cache
 
@@ -238,9 +237,9 @@ def compute_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
                        np.concatenate(shapes, axis=1), float(max_frequency))
 
 
-_CACHE: OrderedDict[tuple, BarrelModes | None] = OrderedDict()  # nominal walls
+_CACHE: stores.Memo[tuple, BarrelModes | None] = stores.Memo(8)  # nominal walls
 # each bat's own (scaled) wall, by identity: the engine asks for it once per batch
-_LAST: OrderedDict[tuple, tuple[BatModel, BarrelModes | None]] = OrderedDict()
+_LAST: stores.Memo[tuple, tuple[BatModel, BarrelModes | None]] = stores.Memo(16)
 # The nominal wall's modes are computed at least to this [Hz]: 1.25 x the 12 kHz of the bat's
 # mode summary (model.diagnostics), which also covers the engine's 10 kHz for barrels down to
 # x0.44 of their nominal stiffness (the plausible range's x0.8 among them) without recomputing.
@@ -263,14 +262,11 @@ def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
     if bat.construction != "hollow":
         return None
     key = (id(bat), float(max_frequency), int(dynamic_orders), int(static_orders))
-    hit = _LAST.get(key)
+    hit = _LAST.look(key)
     if hit is not None and hit[0] is bat:
-        _LAST.move_to_end(key)
         return hit[1]
     modes = _barrel_modes(bat, max_frequency, dynamic_orders, static_orders)
-    _LAST[key] = (bat, modes)
-    while len(_LAST) > 16:
-        _LAST.popitem(last=False)
+    _LAST.keep(key, (bat, modes))
     return modes
 
 
@@ -298,19 +294,15 @@ def _barrel_modes(bat: BatModel, max_frequency: float, dynamic_orders: int,
     cut = NOMINAL_CUT * 2.0 ** level
     key = (h.hexdigest(), m.density, m.youngs_modulus, m.poisson_ratio, bat.barrel_end,
            int(dynamic_orders), int(static_orders), level)
-    base = _CACHE.get(key)
-    if base is not None:
-        _CACHE.move_to_end(key)
-    else:
+    base = _CACHE.look(key)
+    if base is None:
         def compute() -> BarrelModes | None:
             nominal = replace(bat, linear_density=relative, barrel_stiffness_scale=1.0,
                               barrel_mass_scale=1.0)
             return compute_barrel_modes(nominal, cut, dynamic_orders, static_orders)
 
-        base = stores.kept("barrel", key, compute, _to_arrays, lambda a: _from_arrays(a, cut))
-        _CACHE[key] = base
-        while len(_CACHE) > 8:
-            _CACHE.popitem(last=False)
+        base = _CACHE.keep(key, stores.kept("barrel", key, compute, _to_arrays,
+                                            lambda a: _from_arrays(a, cut)))
     if base is None:
         return None
     shell = barrel_shell(bat)
@@ -484,7 +476,7 @@ def _factors_of(orders: tuple[int, ...], angles: bytes) -> np.ndarray:
     return c
 
 
-_PATCH_CACHE: OrderedDict[tuple, tuple[np.ndarray, np.ndarray]] = OrderedDict()
+_PATCH_CACHE: stores.Memo[tuple, tuple[np.ndarray, np.ndarray]] = stores.Memo(64)
 
 
 def _patch_flexibility(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
@@ -501,14 +493,11 @@ def _patch_flexibility(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
     digest = hashlib.sha1(loads.start.tobytes())
     digest.update(loads.f.tobytes())
     key = (id(green), loads.f.shape, digest.digest())
-    hit = _PATCH_CACHE.get(key)
+    hit = _PATCH_CACHE.look(key)
     if hit is not None and hit[0] is green:
-        _PATCH_CACHE.move_to_end(key)
         return hit[1]
     q = _patch_flexibility_of(green, loads)
-    _PATCH_CACHE[key] = (green, q)
-    while len(_PATCH_CACHE) > 64:
-        _PATCH_CACHE.popitem(last=False)
+    _PATCH_CACHE.keep(key, (green, q))
     return q
 
 

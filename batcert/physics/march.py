@@ -10,11 +10,12 @@ builds the :class:`LinearSystem` of each impact and reads the :class:`Separation
 
 from __future__ import annotations
 
-from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+
+from batcert.physics import stores
 
 _TINY = 1e-300  # floor of the compression inside log() [m]
 # rows that share their modes are read and forced with one matrix product per run of them when
@@ -274,23 +275,20 @@ class _State:
                    share=zeros.copy(), base=np.zeros((n, 4)), rows=np.arange(n))
 
 
-_EXP_CACHE: OrderedDict[tuple, tuple[np.ndarray, ...]] = OrderedDict()
+_EXP_CACHE: stores.Memo[tuple, tuple[np.ndarray, ...]] = stores.Memo(128)
 
 
 def _exponentials(lam: np.ndarray, h: float) -> tuple[np.ndarray, ...]:
     """``e^(lam h)``, ``e^(lam h / 2)``, ``phi_1..3(lam h)`` and ``h/2 phi_1(lam h / 2)`` of
     one block's eigenvalues; memoised (a bat's modes recur in every batch of a run)."""
     key = (lam.shape, float(h), lam.tobytes())
-    hit = _EXP_CACHE.get(key)
+    hit = _EXP_CACHE.look(key)
     if hit is not None:
-        _EXP_CACHE.move_to_end(key)
         return hit
     vals = (np.exp(lam * h), np.exp(lam * h / 2), *phi_functions(lam * h),
             0.5 * h * phi_functions(lam * h / 2)[0])
     if lam.shape[0] == 1:  # only single rows (a block's shared row) are worth keeping
-        _EXP_CACHE[key] = vals
-        while len(_EXP_CACHE) > 128:
-            _EXP_CACHE.popitem(last=False)
+        _EXP_CACHE.keep(key, vals)
     return vals
 
 

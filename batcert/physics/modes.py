@@ -4,7 +4,6 @@ beam of :mod:`batcert.physics.beam`, cached in-process, and their nodes."""
 from __future__ import annotations
 
 import hashlib
-from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
@@ -163,8 +162,7 @@ def mode_nodes(modes: Modes, j: int) -> np.ndarray:
     return np.sort(np.concatenate([exact, crossing]))
 
 
-_CACHE: OrderedDict[tuple, Modes] = OrderedDict()
-_CACHE_SIZE = 64
+_CACHE: stores.Memo[tuple, Modes] = stores.Memo(64)
 
 
 def model_hash(bat: BatModel) -> str:
@@ -186,18 +184,15 @@ def cached_modes(bat: BatModel, support: str, pivot: float, n_modes: int = 24,
     The returned arrays are read-only because they are shared between callers.
     """
     key = (model_hash(bat), support, float(pivot), int(n_modes), int(refine))
-    if key in _CACHE:
-        _CACHE.move_to_end(key)
-        return _CACHE[key]
+    hit = _CACHE.look(key)
+    if hit is not None:
+        return hit
     modes = stores.kept("modes", key, lambda: compute_modes(bat, support, pivot, n_modes, refine),
                         _to_arrays, lambda a: _from_arrays(a, support, float(pivot)))
     assert modes is not None
     for a in (modes.z, modes.omega, modes.shapes, modes.rotations):
         a.flags.writeable = False
-    _CACHE[key] = modes
-    if len(_CACHE) > _CACHE_SIZE:
-        _CACHE.popitem(last=False)
-    return modes
+    return _CACHE.keep(key, modes)
 
 
 def _to_arrays(modes: Modes) -> dict[str, np.ndarray]:

@@ -10,10 +10,13 @@ modules whose source (or, for a library, release) the store must fold into its k
 from __future__ import annotations
 
 import hashlib
-from collections.abc import Callable
+from collections import OrderedDict
+from collections.abc import Callable, Hashable
 from typing import Any, Protocol, TypeVar
 
 T = TypeVar("T")
+K = TypeVar("K", bound=Hashable)
+V = TypeVar("V")
 
 
 class Store(Protocol):
@@ -36,6 +39,31 @@ _STORES: dict[str, Store] = {}
 # at most this many impacts: those recur (a barrel's variants, the runner's repeated points);
 # the passes of a large random batch do not, and would each hold about a megabyte
 MEMO_ROWS = 2048
+
+
+class Memo(OrderedDict[K, V]):
+    """An in-process memo that keeps its ``size`` most recently used entries (the one LRU
+    dict of the physics' memos: modes, barrel walls, patch readings, step exponentials)."""
+
+    def __init__(self, size: int) -> None:
+        super().__init__()
+        self.size = size
+
+    def look(self, key: K) -> V | None:
+        """The entry under ``key``, now the most recently used, or None."""
+        hit = self.get(key)
+        if hit is not None:
+            self.move_to_end(key)
+        return hit
+
+    def keep(self, key: K, value: V) -> V:
+        """Keep ``value`` under ``key`` as the most recently used entry, dropping the least
+        recently used beyond ``size``; return ``value``."""
+        self[key] = value
+        self.move_to_end(key)
+        while len(self) > self.size:
+            self.popitem(last=False)
+        return value
 
 
 def use(kind: str, store: Store | None) -> None:

@@ -390,8 +390,8 @@ def test_the_memos_keep_small_batches_only(monkeypatch):
     from batcert.physics import stores
 
     monkeypatch.setattr(stores, "MEMO_ROWS", 3)
-    monkeypatch.setattr(flexible_module, "_BEAM_CACHE", type(flexible_module._BEAM_CACHE)())
-    monkeypatch.setattr(barrel, "_PATCH_CACHE", type(barrel._PATCH_CACHE)())
+    monkeypatch.setattr(flexible_module, "_BEAM_CACHE", stores.Memo(256))
+    monkeypatch.setattr(barrel, "_PATCH_CACHE", stores.Memo(64))
     bat, engine = hollow_bat(2.5e-3), FlexibleEngine()
     barrel._factors_of.cache_clear()
     large = engine.solve(bat, BALL, PIVOT, ImpactBatch(np.linspace(0.45, 0.6, 4),

@@ -763,8 +763,9 @@ def entry() -> None:
     a rigid run, and does nothing a finished command needs. What exit does that matters still
     happens first: the ``atexit`` handlers run (temporary-file finalisers, logging, a profiler's
     save) and stdout and stderr are flushed. The reports are closed and renamed before
-    ``main`` returns (:mod:`batcert.reports.write`). While another non-daemon thread is alive
-    (a pool still winding down) the normal exit is used, which waits for it."""
+    ``main`` returns (:mod:`batcert.reports.write`). While any other thread is alive (a pool
+    still winding down, a client's connection) the normal exit is used, which waits for the
+    threads that must be waited for."""
     try:
         main(prog_name="batcert")
     except SystemExit as done:

@@ -561,10 +561,7 @@ def _hermite_max(u0, d0, u1, d1, h):
     q = -0.5 * (b + np.copysign(disc, b))
     with np.errstate(divide="ignore", invalid="ignore"):
         roots = np.stack([q / a, c / q])
-    best = np.maximum(u0, u1)
-    for s in roots:
-        s = np.where(np.isfinite(s), np.clip(s, 0.0, 1.0), 0.0)
-        val = ((2 * s**3 - 3 * s**2 + 1) * u0 + (s**3 - 2 * s**2 + s) * h * d0
-               + (-2 * s**3 + 3 * s**2) * u1 + (s**3 - s**2) * h * d1)
-        best = np.maximum(best, val)
-    return best
+    s = np.where(np.isfinite(roots), np.clip(roots, 0.0, 1.0), 0.0)  # both roots at once
+    val = ((2 * s**3 - 3 * s**2 + 1) * u0 + (s**3 - 2 * s**2 + s) * h * d0
+           + (-2 * s**3 + 3 * s**2) * u1 + (s**3 - s**2) * h * d1)
+    return np.maximum(np.maximum(u0, u1), val.max(axis=0))

@@ -22,13 +22,14 @@ _TINY = 1e-300  # floor of the compression inside log() [m]
 # the runs average at least this many rows (else row by row; measured, bench_engine.py)
 _SHARED_ROWS = 16
 # a batch is integrated in chunks of about this many (impact, mode) entries (bounded memory),
-# and each step's modal update runs over blocks of rows of about _BLOCK_ENTRIES entries, so that
-# a block's state, forcing and read-out stay in the processor's cache while the per-impact
+# and each step's modal update runs over pieces of rows of about _PIECE_ENTRIES entries, so that
+# a piece's state, forcing and read-out stay in the processor's cache while the per-impact
 # arithmetic runs over the whole chunk (measured, 20,000 random impacts: a hollow bat's 44
-# modes in 1675-row blocks of 4096-row chunks, 5 % more impacts per second than 2234-row chunks
-# updated whole; a solid bat's 18 modes fastest whole, 4096 rows, 4 % ahead of 2503-row blocks)
+# modes in 1675-row pieces of 4096-row chunks, 5 % more impacts per second than 2234-row chunks
+# updated whole; a solid bat's 18 modes fastest whole, 4096 rows, 4 % ahead of 2503-row pieces).
+# ("pieces", not "blocks": a LinearSystem's blocks are the rows of one bat.)
 _CHUNK_ENTRIES = 196_608
-_BLOCK_ENTRIES = 73_728
+_PIECE_ENTRIES = 73_728
 
 
 def phi_functions(z):
@@ -212,8 +213,8 @@ class _RowByRow:
 class _Shared:
     """:class:`_RowByRow` for runs of rows that share their modes (one bat each): one
     propagator ``e1`` (runs, K), read-out ``R`` (runs, 2K, 4) and forcing ``P`` (runs, 3, 2K)
-    per run, applied with one matrix product per block of a run's rows (at most about
-    ``_BLOCK_ENTRIES`` impact-mode entries); the forcing scaled per row by ``scale`` = ``c_y g``
+    per run, applied with one matrix product per piece of a run's rows (at most about
+    ``_PIECE_ENTRIES`` impact-mode entries); the forcing scaled per row by ``scale`` = ``c_y g``
     (n, 2K)."""
 
     e1: np.ndarray
@@ -225,22 +226,22 @@ class _Shared:
     def __post_init__(self) -> None:
         cuts = np.flatnonzero(np.diff(self.group)) + 1
         bounds = np.concatenate([[0], cuts, [self.group.size]])
-        rows = max(1, _BLOCK_ENTRIES // max(self.e1.shape[1], 1))
-        self.blocks = [(a, min(a + rows, int(b)), int(self.group[a0]))
+        rows = max(1, _PIECE_ENTRIES // max(self.e1.shape[1], 1))
+        self.pieces = [(a, min(a + rows, int(b)), int(self.group[a0]))
                        for a0, b in zip(bounds[:-1], bounds[1:], strict=True)
                        for a in range(int(a0), int(b), rows)]
 
     def advance(self, z: np.ndarray, f: np.ndarray) -> np.ndarray:
         y = z.view(float)
-        if len(self.blocks) == 1:  # the common small batch: no slicing (the replay's steps)
-            g = self.blocks[0][2]
+        if len(self.pieces) == 1:  # the common small batch: no slicing (the replay's steps)
+            g = self.pieces[0][2]
             z *= self.e1[g]
             push = f @ self.P[g]
             push *= self.scale
             y += push
             return y @ self.R[g]
         out = np.empty((y.shape[0], 4))
-        for a, b, g in self.blocks:
+        for a, b, g in self.pieces:
             z[a:b] *= self.e1[g]
             push = f[a:b] @ self.P[g]
             push *= self.scale[a:b]
@@ -437,13 +438,15 @@ def march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: floa
           max_time: float, restitution=None, chunk: int | None = None) -> Separation:
     """Integrate all impacts from first touch to separation (ETDRK4; module notes).
 
-    State per impact (:class:`_State`): complex modal coordinates ``Z`` (n, K), the merged
+    State per impact (:class:`_State`): complex modal coordinates, kept scaled as ``Y = c_y Z``
+    (:func:`_coefficients`) (n, K), the merged
     rigid/ball coordinate ``w`` and its rate ``v``, the impulse on the ball, the largest
     compression so far. The stage compressions of Cox & Matthews' scheme (their Eqs. 26-29,
-    linear part exact) are ``u_a = U2 + ka F0``, ``u_b = U2 + ka Fa + b0 F0``,
-    ``u_c = U1 + c0 F0 + cb Fb + ca Fa`` and at the step end ``U1 + n0 F0 + n1 (Fa + Fb) +
-    n2 Fc``, where ``U2``, ``U1`` are the free (force-less) motions over h/2 and h, read from
-    ``Z`` with one matrix product. Finished impacts are recorded and, once they are many,
+    linear part exact) are ``u_a = U2 + ka F0``, ``u_b = U2 + ka Fa + b0 F0`` and
+    ``u_c = U1 + c0 F0 + cb Fb + ca Fa``, where ``U2``, ``U1`` are the free (force-less)
+    motions over h/2 and h; those, and the compression at the step's end, are read from the
+    modal coordinates with one matrix product when the step advances them
+    (:meth:`_Shared.advance`). Finished impacts are recorded and, once they are many,
     dropped from the arrays (:meth:`_State.take`). Batches larger than ``chunk`` impacts
     (default: about ``_CHUNK_ENTRIES`` impact-mode entries) are integrated ``chunk`` at a
     time, so that memory stays bounded whatever the batch.

@@ -69,28 +69,28 @@ def test_the_runs_of_shared_modes_follow_the_rows_that_are_kept():
     group = np.array([0, 0, 0, 1, 1, 2, 2, 2])
     modal = march._Shared(e1=np.ones((3, 2), complex), R=np.zeros((3, 4, 4)), P=np.zeros((3, 3, 4)),
                           scale=np.arange(8.0)[:, None] * np.ones(4), group=group)
-    assert modal.blocks == [(0, 3, 0), (3, 5, 1), (5, 8, 2)]
+    assert modal.pieces == [(0, 3, 0), (3, 5, 1), (5, 8, 2)]
     kept = modal.take(np.array([1, 2, 5, 7]))
-    assert kept.blocks == [(0, 2, 0), (2, 4, 2)]
+    assert kept.pieces == [(0, 2, 0), (2, 4, 2)]
     np.testing.assert_array_equal(kept.scale[:, 0], [1.0, 2.0, 5.0, 7.0])
 
 
-def test_a_long_run_is_updated_in_blocks(monkeypatch):
-    # blocks of at most _BLOCK_ENTRIES impact-mode entries (here 2 rows of 2 modes), never
+def test_a_long_run_is_updated_in_pieces(monkeypatch):
+    # pieces of at most _PIECE_ENTRIES impact-mode entries (here 2 rows of 2 modes), never
     # across two runs
-    monkeypatch.setattr(march, "_BLOCK_ENTRIES", 4)
+    monkeypatch.setattr(march, "_PIECE_ENTRIES", 4)
     group = np.array([0, 0, 0, 0, 0, 1, 1])
     modal = march._Shared(e1=np.ones((2, 2), complex), R=np.zeros((2, 4, 4)), P=np.zeros((2, 3, 4)),
                           scale=np.ones((7, 4)), group=group)
-    assert modal.blocks == [(0, 2, 0), (2, 4, 0), (4, 5, 0), (5, 7, 1)]
+    assert modal.pieces == [(0, 2, 0), (2, 4, 0), (4, 5, 0), (5, 7, 1)]
 
 
-def test_blocks_change_nothing(impacts, monkeypatch):
-    # the shared runs (40 rows each) updated in blocks of 7 rows, cutting every run, against
+def test_pieces_change_nothing(impacts, monkeypatch):
+    # the shared runs (40 rows each) updated in pieces of 7 rows, cutting every run, against
     # whole runs: the same impacts to rounding
     monkeypatch.setattr(march, "_SHARED_ROWS", 1)
     whole = _march(impacts, 1, monkeypatch)
-    monkeypatch.setattr(march, "_BLOCK_ENTRIES", 7 * impacts[0].omega.shape[1])
+    monkeypatch.setattr(march, "_PIECE_ENTRIES", 7 * impacts[0].omega.shape[1])
     cut = _march(impacts, 1, monkeypatch)
     for name in ("impulse", "time", "peak_force", "max_compression", "barrel_share"):
         np.testing.assert_allclose(getattr(cut, name), getattr(whole, name), rtol=1e-12,

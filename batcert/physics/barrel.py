@@ -30,7 +30,7 @@ from __future__ import annotations
 import hashlib
 import math
 from dataclasses import dataclass, replace
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -366,8 +366,10 @@ class PatchLoads:
         np.put_along_axis(g, self.start[:, None] + np.arange(self.f.shape[1]), self.f, axis=1)
         return g
 
-    def by_start(self):
-        """``(s, rows)`` for each window start ``s``: the rows (indices) that start there."""
+    @cached_property
+    def by_start(self) -> list[tuple[int, np.ndarray]]:
+        """``(s, rows)`` for each window start ``s``: the rows (indices) that start there
+        (found once; the patch flexibility and the mode shapes both read by start)."""
         order = np.argsort(self.start, kind="stable")
         starts, first = np.unique(self.start[order], return_index=True)
         bounds = np.append(first, order.size)
@@ -451,7 +453,7 @@ def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray
     factor = c[[order_row[n] for n in barrel.mode_orders]].T  # (p, m)
     shapes = np.empty((loads.f.shape[0], barrel.shapes.shape[1]))  # W_j over each patch
     width = loads.f.shape[1]
-    for s0, rows in loads.by_start():
+    for s0, rows in loads.by_start:
         shapes[rows] = loads.f[rows] @ barrel.shapes[s0:s0 + width]
     gain = factor * shapes
     modal = (gain**2 / barrel.omega**2).sum(axis=1)
@@ -512,7 +514,7 @@ def _patch_flexibility_of(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
     k = np.arange(width)
     row, lag = np.minimum.outer(k, k), np.abs(np.subtract.outer(k, k))  # G(s+k, s+j) in band
     q = np.empty((green.shape[0], loads.f.shape[0]))
-    for s, rows in loads.by_start():
+    for s, rows in loads.by_start:
         window = green[:, s + row, lag].transpose(1, 0, 2).reshape(width, -1)  # (L, orders L)
         f = loads.f[rows]
         q[:, rows] = np.einsum("pnk,pk->np", (f @ window).reshape(rows.size, -1, width), f)

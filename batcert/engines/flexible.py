@@ -46,7 +46,6 @@ point's speed after impact), the rigid-body equivalent of what the vibrating bat
 
 from __future__ import annotations
 
-import hashlib
 from collections.abc import Callable
 
 import numpy as np
@@ -71,7 +70,7 @@ SOLID_STEP, HOLLOW_STEP = 20e-6, 12.5e-6  # [s]
 DEFAULT_SHELL_FREQUENCY = 10_000.0  # [Hz]
 BALL_LOSS = ("compression", "relative-speed")
 _PIVOT_CLEARANCE = 1e-3  # an impact closer than this to the pivot is refused [m]
-_BEAM_CACHE: stores.Memo[tuple, tuple] = stores.Memo(256)  # see FlexibleEngine._beam_at
+_BEAM_CACHE: stores.Memo[tuple, tuple] = stores.Memo(256)  # (modes, result): FlexibleEngine._beam_at
 # impacts solved together at most (FlexibleEngine.solve_many): memory bounded whatever the
 # batch, each pass's arrays in cache (measured, bench_engine.py)
 _PASS_ROWS = 4096
@@ -245,17 +244,8 @@ class FlexibleEngine:
         residual compliance there, (p,) (zero without ``residual``); memoised on the modes and
         the patches, which recur (a barrel's variants, the same points in several runs); a
         batch of more than ``stores.MEMO_ROWS`` impacts is neither looked up nor kept."""
-        if points.shape[0] > stores.MEMO_ROWS:
-            return self._beam_computed(bat, modes, points, weights)
-        digest = hashlib.sha1(points.tobytes())
-        digest.update(weights.tobytes())
-        key = (id(modes), self.residual, points.shape, digest.digest())
-        hit = _BEAM_CACHE.look(key)
-        if hit is not None and hit[0] is modes:
-            return hit[1], hit[2]
-        phi, residual = self._beam_computed(bat, modes, points, weights)
-        _BEAM_CACHE.keep(key, (modes, phi, residual))
-        return phi, residual
+        return _BEAM_CACHE.batch(modes, (self.residual, points.shape), (points, weights),
+                                 lambda: self._beam_computed(bat, modes, points, weights))
 
     def _beam_computed(self, bat: BatModel, modes: Modes, points: np.ndarray,
                        weights: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -490,17 +490,8 @@ def _patch_flexibility(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
     scaled wall (calibration, the uncertainty range) shares its nominal flexibility, and the
     runner asks again for the same points.
     """
-    if loads.f.shape[0] > stores.MEMO_ROWS:
-        return _patch_flexibility_of(green, loads)
-    digest = hashlib.sha1(loads.start.tobytes())
-    digest.update(loads.f.tobytes())
-    key = (id(green), loads.f.shape, digest.digest())
-    hit = _PATCH_CACHE.look(key)
-    if hit is not None and hit[0] is green:
-        return hit[1]
-    q = _patch_flexibility_of(green, loads)
-    _PATCH_CACHE.keep(key, (green, q))
-    return q
+    return _PATCH_CACHE.batch(green, (loads.f.shape,), (loads.start, loads.f),
+                              lambda: _patch_flexibility_of(green, loads))
 
 
 def _patch_flexibility_of(green: np.ndarray, loads: PatchLoads) -> np.ndarray:

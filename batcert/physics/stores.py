@@ -65,6 +65,25 @@ class Memo(OrderedDict[K, V]):
             self.popitem(last=False)
         return value
 
+    def batch(self: Memo[tuple, Any], owner: object, key: tuple, arrays: tuple,
+              compute: Callable[[], T]) -> T:
+        """``compute()`` for a batch of impacts, memoised on ``owner`` (the modes or the wall
+        it reads, by identity: an entry is used only while it is that very object), ``key`` and
+        a digest of ``arrays`` (each with one row per impact). A batch of more than
+        :data:`MEMO_ROWS` impacts is neither hashed, looked up nor kept."""
+        if arrays[0].shape[0] > MEMO_ROWS:
+            return compute()
+        digest = hashlib.sha1()
+        for a in arrays:
+            digest.update(a.tobytes())
+        full = (id(owner), *key, digest.digest())
+        hit = self.look(full)
+        if hit is not None and hit[0] is owner:
+            return hit[1]
+        value = compute()
+        self.keep(full, (owner, value))
+        return value
+
 
 def use(kind: str, store: Store | None) -> None:
     """Keep results of ``kind`` in ``store`` (None: in the process only)."""

@@ -30,6 +30,12 @@ _SHARED_ROWS = 16
 # ("pieces", not "blocks": a LinearSystem's blocks are the rows of one bat.)
 _CHUNK_ENTRIES = 196_608
 _PIECE_ENTRIES = 73_728
+# runs of shared modes keep their state in a frame turning with the free modes (_Turns), folded
+# back at most every _FRAME_STEPS steps, and before a damped mode's growth 1/|e1^k| exceeds
+# e^_FRAME_GROWTH (far from overflow, and without loss of precision: the state is read as
+# e1^k X, relative to its latest forcing)
+_FRAME_STEPS = 32
+_FRAME_GROWTH = 50.0
 
 
 def phi_functions(z):
@@ -205,6 +211,10 @@ class _RowByRow:
         y += np.matmul(f[:, None, :], self.B)[:, 0, :]
         return np.matmul(self.R, y[:, :, None])[:, :, 0]
 
+    def current(self, z: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """``Y`` of ``rows`` (indices or a mask): the state itself."""
+        return z[rows]
+
     def take(self, keep: np.ndarray) -> _RowByRow:
         return _RowByRow(self.e1[keep], self.R[keep], self.B[keep])
 
@@ -215,13 +225,20 @@ class _Shared:
     propagator ``e1`` (runs, K), read-out ``R`` (runs, 2K, 4) and forcing ``P`` (runs, 3, 2K)
     per run, applied with one matrix product per piece of a run's rows (at most about
     ``_PIECE_ENTRIES`` impact-mode entries); the forcing scaled per row by ``scale`` = ``c_y g``
-    (n, 2K)."""
+    (n, 2K).
+
+    Each run's state is kept in a frame that turns with its free modes (:class:`_Turns`):
+    ``z`` holds ``X = Y / e1^k``, ``k`` steps after the run's state was last folded back to
+    ``Y``, so that a step only forces and reads the state and never propagates it;
+    :meth:`current` gives ``Y``."""
 
     e1: np.ndarray
     R: np.ndarray
     P: np.ndarray
     scale: np.ndarray
     group: np.ndarray  # each row's run, (n,)
+    turns: _Turns | None = None  # the frames' forcing and read-out (built from e1, R, P)
+    k: np.ndarray | None = None  # each run's steps since its state was last folded, (runs,)
 
     def __post_init__(self) -> None:
         cuts = np.flatnonzero(np.diff(self.group)) + 1
@@ -230,27 +247,80 @@ class _Shared:
         self.pieces = [(a, min(a + rows, int(b)), int(self.group[a0]))
                        for a0, b in zip(bounds[:-1], bounds[1:], strict=True)
                        for a in range(int(a0), int(b), rows)]
+        if self.turns is None:
+            self.turns = _Turns.of(self.e1, self.R, self.P)
+        if self.k is None:
+            self.k = np.zeros(self.e1.shape[0], dtype=int)
 
     def advance(self, z: np.ndarray, f: np.ndarray) -> np.ndarray:
         y = z.view(float)
+        turns, k = self.turns, self.k
+        assert turns is not None and k is not None
         if len(self.pieces) == 1:  # the common small batch: no slicing (the replay's steps)
             g = self.pieces[0][2]
-            z *= self.e1[g]
-            push = f @ self.P[g]
+            push = f @ turns.P[k[g], g]
             push *= self.scale
             y += push
-            return y @ self.R[g]
-        out = np.empty((y.shape[0], 4))
-        for a, b, g in self.pieces:
-            z[a:b] *= self.e1[g]
-            push = f[a:b] @ self.P[g]
-            push *= self.scale[a:b]
-            y[a:b] += push
-            np.matmul(y[a:b], self.R[g], out=out[a:b])
+            out = y @ turns.R[k[g], g]
+        else:
+            out = np.empty((y.shape[0], 4))
+            for a, b, g in self.pieces:
+                push = f[a:b] @ turns.P[k[g], g]
+                push *= self.scale[a:b]
+                y[a:b] += push
+                np.matmul(y[a:b], turns.R[k[g], g], out=out[a:b])
+        k += 1
+        full = k == turns.steps
+        if full.any():  # fold these runs' frames back: z holds their Y again
+            for a, b, g in self.pieces:
+                if full[g]:
+                    z[a:b] *= turns.turn[k[g], g]
+            k[full] = 0
         return out
 
+    def current(self, z: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """``Y`` of ``rows`` (indices or a mask) from the state ``z``."""
+        assert self.turns is not None and self.k is not None
+        g = self.group[rows]
+        return z[rows] * self.turns.turn[self.k[g], g]
+
     def take(self, keep: np.ndarray) -> _Shared:
-        return _Shared(self.e1, self.R, self.P, self.scale[keep], self.group[keep])
+        return _Shared(self.e1, self.R, self.P, self.scale[keep], self.group[keep], self.turns,
+                       self.k)
+
+
+@dataclass(frozen=True)
+class _Turns:
+    """The forcing and read-out of :class:`_Shared`'s turning frames ``X = Y / e1^k``:
+    ``Y_(k+1) = e1 Y_k + scale (f P)`` is ``X_(k+1) = X_k + scale (f P_k)`` with
+    ``P_k = P / e1^(k+1)``, and ``Y_(k+1)`` is read from ``X_(k+1)`` with ``R_k = R e1^(k+1)``
+    (the scale is real, so it commutes with the turn). This leaves out the elementwise complex
+    propagation of every row's state at every step, the modal update's most expensive part
+    (measured, docs/performance.md). A run's state is folded back every ``steps`` steps of its
+    own: at most ``_FRAME_STEPS``, and few enough that its most damped mode's ``|1/e1^k|``
+    stays below ``e^_FRAME_GROWTH`` (so a run's rounding does not depend on what it is stacked
+    with).
+    """
+
+    turn: np.ndarray  # e1^k for k = 0 .. max(steps), (max(steps) + 1, runs, K)
+    P: np.ndarray  # forcing of X over the step from k to k + 1, (max(steps), runs, 3, 2K)
+    R: np.ndarray  # read-out of Y_(k+1) from X_(k+1), (max(steps), runs, 2K, 4)
+    steps: np.ndarray  # each run's steps between folds, (runs,)
+
+    @classmethod
+    def of(cls, e1: np.ndarray, R: np.ndarray, P: np.ndarray) -> _Turns:
+        decay = np.max(-np.log(np.abs(e1)), axis=1, initial=0.0)  # per step, (runs,)
+        steps = np.clip(_FRAME_GROWTH // np.maximum(decay, 1e-300), 1, _FRAME_STEPS).astype(int)
+        longest = int(steps.max(initial=1))
+        turn = np.ones((longest + 1,) + e1.shape, dtype=complex)
+        np.cumprod(np.broadcast_to(e1, (longest,) + e1.shape), axis=0, out=turn[1:])
+        push = np.ascontiguousarray(P).view(complex)  # (runs, 3, K)
+        forcing = np.ascontiguousarray(push[None] / turn[1:, :, None, :]).view(float)
+        weights = R[:, 1::2, :] + 1j * R[:, 0::2, :]  # Im(sum w Y) = R . Y as floats, (runs, K, 4)
+        turned = weights[None] * turn[1:, ..., None]
+        read = np.empty(turned.shape[:2] + (2 * turned.shape[2], turned.shape[3]))
+        read[:, :, 0::2], read[:, :, 1::2] = turned.imag, turned.real
+        return cls(turn, forcing, read, steps)
 
 
 @dataclass
@@ -411,7 +481,7 @@ def _step(st: _State, c: _Coefficients, h: float, shell: slice | None) -> np.nda
             top_rows = top[top >= st.u_top[turned]]
             a1 = 1.0 + c.alpha[rows]
             ball = np.exp(c.lk1[rows] + a1 * np.log(top_rows)) / a1
-            z = _unscaled(st.z[rows, shell], c.c_y[rows, shell])
+            z = _unscaled(c.modal.current(st.z, rows)[:, shell], c.c_y[rows, shell])
             barrel = c.shell_factor[rows] * (z.imag ** 2).sum(1)
             st.share[rows] = barrel / (ball + barrel)
         st.u_top[turned] = np.maximum(st.u_top[turned], top)
@@ -515,7 +585,7 @@ def _march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: flo
         idx = st.rows[mask]
         out.impulse[idx], out.peak_force[idx] = st.impulse[mask], st.f_peak[mask]
         out.max_compression[idx] = st.u_top[mask]
-        out.modal[idx] = _unscaled(st.z[mask], c.c_y[mask])
+        out.modal[idx] = _unscaled(c.modal.current(st.z, mask), c.c_y[mask])
         if out.barrel_share is not None:
             out.barrel_share[idx] = st.share[mask]
         return idx

@@ -107,3 +107,38 @@ def test_a_mode_that_nothing_drives_stays_at_rest(impacts, monkeypatch):
     idle = system.gain == 0
     assert idle.any()
     np.testing.assert_array_equal(sep.modal[idle], 0.0)
+
+
+def test_the_turning_frames_change_nothing(impacts, monkeypatch):
+    # the shared runs' state kept in frames that turn with the free modes, folded back every
+    # _FRAME_STEPS steps (the impacts end between folds, so their state is read from inside a
+    # frame), against folded back at every step, which is the plain propagation Y <- e1 Y:
+    # the same impacts to rounding
+    monkeypatch.setattr(march, "_SHARED_ROWS", 1)
+    turning = _march(impacts, 1, monkeypatch)
+    monkeypatch.setattr(march, "_FRAME_STEPS", 1)
+    plain = _march(impacts, 1, monkeypatch)
+    for name in ("impulse", "time", "peak_force", "max_compression", "barrel_share"):
+        np.testing.assert_allclose(getattr(turning, name), getattr(plain, name), rtol=1e-12,
+                                   err_msg=name)
+    np.testing.assert_allclose(turning.modal, plain.modal, rtol=0,
+                               atol=1e-12 * np.abs(plain.modal).max())
+
+
+def test_a_damped_run_folds_its_frame_sooner():
+    # each run folds after at most _FRAME_STEPS steps of its own, and before its most damped
+    # mode's |1/e1^k| passes e^_FRAME_GROWTH: here 50 // 3 = 16 steps for a decay of 3 per
+    # step. The frame's forcing is P / e1^(k+1) and its read-out R e1^(k+1).
+    e1 = np.exp(np.array([[-1e-4 + 0.3j, -2e-3 + 1.0j], [-0.5 + 0.2j, -3.0 + 2.0j]]))
+    rng = np.random.default_rng(0)
+    R, P = rng.standard_normal((2, 4, 4)), rng.standard_normal((2, 3, 4))
+    turns = march._Turns.of(e1, R, P)
+    assert list(turns.steps) == [march._FRAME_STEPS, 16]
+    for g, steps in enumerate(turns.steps):
+        assert np.abs(1 / turns.turn[steps, g]).max() <= np.exp(march._FRAME_GROWTH)
+    k, g = 5, 1
+    np.testing.assert_allclose(turns.P[k, g].view(complex) * e1[g] ** (k + 1),
+                               P[g].view(complex), rtol=1e-13)
+    y = rng.standard_normal(4)  # Y as floats: Y = e1^(k+1) X
+    x = (y.view(complex) / e1[g] ** (k + 1)).view(float)
+    np.testing.assert_allclose(x @ turns.R[k, g], y @ R[g], rtol=1e-12)

@@ -18,7 +18,7 @@ optional extra at most). This benchmark makes the measurement on a real hollow b
    proportion. Its results (impulses) are checked against the numpy stepping on the same
    inputs. Compiled twice: strict IEEE arithmetic, and ``fastmath`` (reassociation, which the
    mode loop's sums need to vectorise).
-3. The numpy stepping again with only its modal update (``_Shared.advance``: the propagation,
+3. The numpy stepping again with only its modal update (``SharedRuns.advance``: the propagation,
    forcing and read-out of the modal state, the stepping's largest cost) compiled: a smaller
    kernel, with no physics of its own.
 4. Printed: ns per impact-step of each, numba's import and compile cost, and what the engine's
@@ -48,6 +48,7 @@ import batcert.physics.march as march_module  # noqa: E402
 from batcert.commands.inputs import load_bat_any, load_protocol_any  # noqa: E402
 from batcert.engines import ImpactBatch  # noqa: E402
 from batcert.engines.flexible import FlexibleEngine  # noqa: E402
+from batcert.physics import modal_update  # noqa: E402
 
 PIVOT = 0.1524
 TARGET = 50_000  # impacts per second of one core (issue 9)
@@ -194,7 +195,7 @@ from numba import njit
 
 @njit(cache=False, fastmath=True)
 def advance(e1, R, P, scale, group, y, f, out):
-    """_Shared.advance fused: Y <- e1 Y + scale (f P) and its read-out, row by row."""
+    """SharedRuns.advance fused: Y <- e1 Y + scale (f P) and its read-out, row by row."""
     n, k2 = y.shape
     for i in range(n):
         g = group[i]
@@ -217,7 +218,7 @@ def advance(e1, R, P, scale, group, y, f, out):
 
 
 def compiled_update(calls):
-    """The numpy stepping with only its modal update (``_Shared.advance``) compiled: compile
+    """The numpy stepping with only its modal update (``SharedRuns.advance``) compiled: compile
     time, the stepping's wall time and its separations."""
     space: dict = {}
     exec(UPDATE, space)  # noqa: S102
@@ -231,8 +232,8 @@ def compiled_update(calls):
     t0 = time.perf_counter()
     system, k1, alpha, beta, speed, step, max_time = calls[0]
     rows = min(2, system.omega.shape[0])
-    real = march_module._Shared.advance
-    march_module._Shared.advance = advance
+    real = modal_update.SharedRuns.advance
+    modal_update.SharedRuns.advance = advance
     try:
         k1, alpha = (np.broadcast_to(x, system.omega.shape[:1])[:rows] for x in (k1, alpha))
         march_module.march(system.rows(0, rows), k1, alpha, beta[:rows], speed[:rows], step,
@@ -240,7 +241,7 @@ def compiled_update(calls):
         t_compile = time.perf_counter() - t0
         elapsed, _, seps = numpy_stepping(calls)
     finally:
-        march_module._Shared.advance = real
+        modal_update.SharedRuns.advance = real
     return t_compile, elapsed, seps
 
 
@@ -253,7 +254,7 @@ def compiled_stepping(calls, fastmath: bool):
     for system, k1, alpha, beta, speed, step, max_time in calls:
         n = system.omega.shape[0]
         c = march_module._coefficients(system, step, k1, alpha, beta)
-        if not isinstance(c.modal, march_module._Shared) or np.any(c.modal.group):
+        if not isinstance(c.modal, modal_update.SharedRuns) or np.any(c.modal.group):
             raise SystemExit("bench_kernel: expected one bat's shared modes per call")
         inputs.append((c.modal.e1[0], c.modal.R[0], c.modal.P[0],
                        np.ascontiguousarray(c.modal.scale[:, 0::2]), c.ka, c.b0,

@@ -4,8 +4,9 @@ All impacts advance together, arrays shaped (impacts, modes). The linear modal d
 propagated exactly; only the contact force is approximated, by the exponential Runge-Kutta scheme
 ETDRK4 (Cox & Matthews, J. Comput. Phys. 176 (2002) 430, Eqs. 26-29) in complex modal
 coordinates ``Z = p - conj(lambda) q``, ``Z' = lambda Z - g F``. The contact law is Nathan's
-(2000) power-law hysteresis (:mod:`batcert.physics.contact`). :mod:`batcert.physics.flexible`
-builds the :class:`LinearSystem` of each impact and reads the :class:`Separation`.
+(2000) power-law hysteresis (:mod:`batcert.physics.contact`). :mod:`batcert.engines.flexible`
+builds the :class:`LinearSystem` of each impact and reads the :class:`Separation`;
+:mod:`batcert.physics.modal_update` advances the modal state by a step.
 """
 
 from __future__ import annotations
@@ -16,26 +17,17 @@ from typing import Any
 import numpy as np
 
 from batcert.physics import stores
+from batcert.physics.modal_update import RowByRow, SharedRuns, im_weights
 
 _TINY = 1e-300  # floor of the compression inside log() [m]
 # rows that share their modes are read and forced with one matrix product per run of them when
 # the runs average at least this many rows (else row by row; measured, bench_engine.py)
 _SHARED_ROWS = 16
 # a batch is integrated in chunks of about this many (impact, mode) entries (bounded memory),
-# and each step's modal update runs over pieces of rows of about _PIECE_ENTRIES entries, so that
-# a piece's state, forcing and read-out stay in the processor's cache while the per-impact
-# arithmetic runs over the whole chunk (measured, 20,000 random impacts: a hollow bat's 44
-# modes in 1675-row pieces of 4096-row chunks, 5 % more impacts per second than 2234-row chunks
-# updated whole; a solid bat's 18 modes fastest whole, 4096 rows, 4 % ahead of 2503-row pieces).
-# ("pieces", not "blocks": a LinearSystem's blocks are the rows of one bat.)
+# while each step's modal update runs over cache-sized pieces of them (modal_update.py;
+# measured, 20,000 random impacts: a hollow bat's 44 modes in 1675-row pieces of 4096-row
+# chunks, 5 % more impacts per second than 2234-row chunks updated whole)
 _CHUNK_ENTRIES = 196_608
-_PIECE_ENTRIES = 73_728
-# runs of shared modes keep their state in a frame turning with the free modes (_Turns), folded
-# back at most every _FRAME_STEPS steps, and before a damped mode's growth 1/|e1^k| exceeds
-# e^_FRAME_GROWTH (far from overflow, and without loss of precision: the state is read as
-# e1^k X, relative to its latest forcing)
-_FRAME_STEPS = 32
-_FRAME_GROWTH = 50.0
 
 
 def phi_functions(z):
@@ -186,141 +178,11 @@ class _Coefficients:
     alpha: np.ndarray  # each impact's compression exponent
     shell_factor: np.ndarray  # 1 / (2 (1 - zeta^2)): shell potential energy per Im(Z)^2
     top_seen: np.ndarray  # the largest compression ``beta`` was last evaluated at [m]
-    modal: _RowByRow | _Shared  # how Y advances and the contact point reads it
+    modal: RowByRow | SharedRuns  # how Y advances and the contact point reads it
 
     def take(self, keep: np.ndarray) -> _Coefficients:
         kept = {k: v.take(keep) if k == "modal" else v[keep] for k, v in vars(self).items()}
         return _Coefficients(**kept)
-
-
-@dataclass
-class _RowByRow:
-    """Each row's own propagator ``e1`` (n, K), read-out ``R`` (n, 4, 2K) and forcing ``B``
-    (n, 3, 2K) of ``Y`` (``R`` and ``B`` on ``Y`` as floats): the free ``y`` after h/2 and h,
-    ``y'`` and ``y`` now; the change of ``Y`` per (F0, Fa + Fb, Fc)."""
-
-    e1: np.ndarray
-    R: np.ndarray
-    B: np.ndarray
-
-    def advance(self, z: np.ndarray, f: np.ndarray) -> np.ndarray:
-        """Advance ``z`` (``Y``, (n, K) complex) by one step in place under the forces ``f``
-        (n, 3); return the read-out of the new ``Y``, (n, 4)."""
-        z *= self.e1
-        y = z.view(float)
-        y += np.matmul(f[:, None, :], self.B)[:, 0, :]
-        return np.matmul(self.R, y[:, :, None])[:, :, 0]
-
-    def current(self, z: np.ndarray, rows: np.ndarray) -> np.ndarray:
-        """``Y`` of ``rows`` (indices or a mask): the state itself."""
-        return z[rows]
-
-    def take(self, keep: np.ndarray) -> _RowByRow:
-        return _RowByRow(self.e1[keep], self.R[keep], self.B[keep])
-
-
-@dataclass
-class _Shared:
-    """:class:`_RowByRow` for runs of rows that share their modes (one bat each): one
-    propagator ``e1`` (runs, K), read-out ``R`` (runs, 2K, 4) and forcing ``P`` (runs, 3, 2K)
-    per run, applied with one matrix product per piece of a run's rows (at most about
-    ``_PIECE_ENTRIES`` impact-mode entries); the forcing scaled per row by ``scale`` = ``c_y g``
-    (n, 2K).
-
-    Each run's state is kept in a frame that turns with its free modes (:class:`_Turns`):
-    ``z`` holds ``X = Y / e1^k``, ``k`` steps after the run's state was last folded back to
-    ``Y``, so that a step only forces and reads the state and never propagates it;
-    :meth:`current` gives ``Y``."""
-
-    e1: np.ndarray
-    R: np.ndarray
-    P: np.ndarray
-    scale: np.ndarray
-    group: np.ndarray  # each row's run, (n,)
-    turns: _Turns | None = None  # the frames' forcing and read-out (built from e1, R, P)
-    k: np.ndarray | None = None  # each run's steps since its state was last folded, (runs,)
-
-    def __post_init__(self) -> None:
-        cuts = np.flatnonzero(np.diff(self.group)) + 1
-        bounds = np.concatenate([[0], cuts, [self.group.size]])
-        rows = max(1, _PIECE_ENTRIES // max(self.e1.shape[1], 1))
-        self.pieces = [(a, min(a + rows, int(b)), int(self.group[a0]))
-                       for a0, b in zip(bounds[:-1], bounds[1:], strict=True)
-                       for a in range(int(a0), int(b), rows)]
-        if self.turns is None:
-            self.turns = _Turns.of(self.e1, self.R, self.P)
-        if self.k is None:
-            self.k = np.zeros(self.e1.shape[0], dtype=int)
-
-    def advance(self, z: np.ndarray, f: np.ndarray) -> np.ndarray:
-        y = z.view(float)
-        turns, k = self.turns, self.k
-        assert turns is not None and k is not None
-        if len(self.pieces) == 1:  # the common small batch: no slicing (the replay's steps)
-            g = self.pieces[0][2]
-            push = f @ turns.P[k[g], g]
-            push *= self.scale
-            y += push
-            out = y @ turns.R[k[g], g]
-        else:
-            out = np.empty((y.shape[0], 4))
-            for a, b, g in self.pieces:
-                push = f[a:b] @ turns.P[k[g], g]
-                push *= self.scale[a:b]
-                y[a:b] += push
-                np.matmul(y[a:b], turns.R[k[g], g], out=out[a:b])
-        k += 1
-        full = k == turns.steps
-        if full.any():  # fold these runs' frames back: z holds their Y again
-            for a, b, g in self.pieces:
-                if full[g]:
-                    z[a:b] *= turns.turn[k[g], g]
-            k[full] = 0
-        return out
-
-    def current(self, z: np.ndarray, rows: np.ndarray) -> np.ndarray:
-        """``Y`` of ``rows`` (indices or a mask) from the state ``z``."""
-        assert self.turns is not None and self.k is not None
-        g = self.group[rows]
-        return z[rows] * self.turns.turn[self.k[g], g]
-
-    def take(self, keep: np.ndarray) -> _Shared:
-        return _Shared(self.e1, self.R, self.P, self.scale[keep], self.group[keep], self.turns,
-                       self.k)
-
-
-@dataclass(frozen=True)
-class _Turns:
-    """The forcing and read-out of :class:`_Shared`'s turning frames ``X = Y / e1^k``:
-    ``Y_(k+1) = e1 Y_k + scale (f P)`` is ``X_(k+1) = X_k + scale (f P_k)`` with
-    ``P_k = P / e1^(k+1)``, and ``Y_(k+1)`` is read from ``X_(k+1)`` with ``R_k = R e1^(k+1)``
-    (the scale is real, so it commutes with the turn). This leaves out the elementwise complex
-    propagation of every row's state at every step, the modal update's most expensive part
-    (measured, docs/performance.md). A run's state is folded back every ``steps`` steps of its
-    own: at most ``_FRAME_STEPS``, and few enough that its most damped mode's ``|1/e1^k|``
-    stays below ``e^_FRAME_GROWTH`` (so a run's rounding does not depend on what it is stacked
-    with).
-    """
-
-    turn: np.ndarray  # e1^k for k = 0 .. max(steps), (max(steps) + 1, runs, K)
-    P: np.ndarray  # forcing of X over the step from k to k + 1, (max(steps), runs, 3, 2K)
-    R: np.ndarray  # read-out of Y_(k+1) from X_(k+1), (max(steps), runs, 2K, 4)
-    steps: np.ndarray  # each run's steps between folds, (runs,)
-
-    @classmethod
-    def of(cls, e1: np.ndarray, R: np.ndarray, P: np.ndarray) -> _Turns:
-        decay = np.max(-np.log(np.abs(e1)), axis=1, initial=0.0)  # per step, (runs,)
-        steps = np.clip(_FRAME_GROWTH // np.maximum(decay, 1e-300), 1, _FRAME_STEPS).astype(int)
-        longest = int(steps.max(initial=1))
-        turn = np.ones((longest + 1,) + e1.shape, dtype=complex)
-        np.cumprod(np.broadcast_to(e1, (longest,) + e1.shape), axis=0, out=turn[1:])
-        push = np.ascontiguousarray(P).view(complex)  # (runs, 3, K)
-        forcing = np.ascontiguousarray(push[None] / turn[1:, :, None, :]).view(float)
-        weights = R[:, 1::2, :] + 1j * R[:, 0::2, :]  # Im(sum w Y) = R . Y as floats, (runs, K, 4)
-        turned = weights[None] * turn[1:, ..., None]
-        read = np.empty(turned.shape[:2] + (2 * turned.shape[2], turned.shape[3]))
-        read[:, :, 0::2], read[:, :, 1::2] = turned.imag, turned.real
-        return cls(turn, forcing, read, steps)
 
 
 @dataclass
@@ -401,16 +263,16 @@ def _coefficients(system: LinearSystem, h: float, k1, alpha, beta) -> _Coefficie
         push = -np.stack([h * (p1 - 3 * p2 + 4 * p3), 2 * h * (p2 - 2 * p3),
                           h * (4 * p3 - p2)], axis=1)  # forcing of Z per unit g, (., 3, K)
         # read-outs: free y after h/2 and h, y' (= Im(sum lam Y)) and y (= Im(sum Y))
-        read = _im_weights(np.stack([e2, e1, lam_b, np.ones_like(e1)], axis=1))
+        read = im_weights(np.stack([e2, e1, lam_b, np.ones_like(e1)], axis=1))
         blocks.append((a, b, same, e1, read, push))
     inv_mu = system.inv_reduced_mass
     per_row = [np.broadcast_to(np.asarray(x, dtype=float), (n,)).copy() for x in (k1, alpha, beta)]
     k1, alpha, beta = per_row
-    modal: _RowByRow | _Shared
+    modal: RowByRow | SharedRuns
     runs = _runs(blocks, om, system.zeta)
     if runs is not None and len(runs) * _SHARED_ROWS <= max(n, _SHARED_ROWS):
         first = [blocks[i] for i, _, _ in runs]
-        modal = _Shared(
+        modal = SharedRuns(
             e1=np.concatenate([blk[3] for blk in first]),
             R=np.ascontiguousarray(np.concatenate([blk[4] for blk in first]).transpose(0, 2, 1)),
             P=np.ascontiguousarray(np.concatenate([blk[5] for blk in first])).view(float),
@@ -420,20 +282,13 @@ def _coefficients(system: LinearSystem, h: float, k1, alpha, beta) -> _Coefficie
         def rows(i):  # each row's copy of a block's part
             return np.concatenate([np.broadcast_to(blk[i], (blk[1] - blk[0],) + blk[i].shape[1:])
                                    for blk in blocks])
-        modal = _RowByRow(e1=rows(3), R=np.ascontiguousarray(rows(4)),
+        modal = RowByRow(e1=rows(3), R=np.ascontiguousarray(rows(4)),
                           B=np.ascontiguousarray(cg[:, None, :] * rows(5)).view(float))
     return _Coefficients(
         ka=ka, b0=-h * h / 4 * inv_mu, c0=c0, cb=2 * ka, ca=-h * h / 2 * inv_mu,
         w6=-h * h / 6 * inv_mu, v6=-h / 6 * inv_mu, c_y=c_y, beta=beta, ab=alpha - beta,
         lk1=np.log(k1), alpha=alpha, shell_factor=0.5 / (1.0 - system.zeta**2),
         top_seen=np.full(n, np.nan), modal=modal)
-
-
-def _im_weights(coef: np.ndarray) -> np.ndarray:
-    """Weights ``wt`` with ``Im(sum coef Y) = wt . Y.view(float)``, (..., 2K)."""
-    wt = np.empty(coef.shape[:-1] + (2 * coef.shape[-1],))
-    wt[..., 0::2], wt[..., 1::2] = coef.imag, coef.real
-    return wt
 
 
 def _runs(blocks: list, om: np.ndarray, zeta: np.ndarray) -> list[tuple[int, int, int]] | None:
@@ -516,8 +371,8 @@ def march(system: LinearSystem, k1, alpha, beta, approach_speed, time_step: floa
     ``u_c = U1 + c0 F0 + cb Fb + ca Fa``, where ``U2``, ``U1`` are the free (force-less)
     motions over h/2 and h; those, and the compression at the step's end, are read from the
     modal coordinates with one matrix product when the step advances them
-    (:meth:`_Shared.advance`). Finished impacts are recorded and, once they are many,
-    dropped from the arrays (:meth:`_State.take`). Batches larger than ``chunk`` impacts
+    (:mod:`batcert.physics.modal_update`). Finished impacts are recorded and, once they are
+    many, dropped from the arrays (:meth:`_State.take`). Batches larger than ``chunk`` impacts
     (default: about ``_CHUNK_ENTRIES`` impact-mode entries) are integrated ``chunk`` at a
     time, so that memory stays bounded whatever the batch.
 

@@ -14,7 +14,7 @@ import pytest
 from batcert.commands.inputs import load_bat_any, load_protocol_any
 from batcert.engines import ImpactBatch
 from batcert.engines.flexible import FlexibleEngine
-from batcert.physics import march
+from batcert.physics import march, modal_update
 from batcert.physics.contact import compression_restitution, restitution_exponent
 
 PIVOT = 0.1524  # [m from knob]
@@ -64,33 +64,12 @@ def test_shared_runs_and_row_by_row_give_the_same_impacts(impacts, monkeypatch, 
     np.testing.assert_allclose(shared.modal, rows.modal, rtol=0, atol=1e-12 * scale)
 
 
-def test_the_runs_of_shared_modes_follow_the_rows_that_are_kept():
-    # dropping finished rows keeps each remaining row with its own run's matrices
-    group = np.array([0, 0, 0, 1, 1, 2, 2, 2])
-    modal = march._Shared(e1=np.ones((3, 2), complex), R=np.zeros((3, 4, 4)), P=np.zeros((3, 3, 4)),
-                          scale=np.arange(8.0)[:, None] * np.ones(4), group=group)
-    assert modal.pieces == [(0, 3, 0), (3, 5, 1), (5, 8, 2)]
-    kept = modal.take(np.array([1, 2, 5, 7]))
-    assert kept.pieces == [(0, 2, 0), (2, 4, 2)]
-    np.testing.assert_array_equal(kept.scale[:, 0], [1.0, 2.0, 5.0, 7.0])
-
-
-def test_a_long_run_is_updated_in_pieces(monkeypatch):
-    # pieces of at most _PIECE_ENTRIES impact-mode entries (here 2 rows of 2 modes), never
-    # across two runs
-    monkeypatch.setattr(march, "_PIECE_ENTRIES", 4)
-    group = np.array([0, 0, 0, 0, 0, 1, 1])
-    modal = march._Shared(e1=np.ones((2, 2), complex), R=np.zeros((2, 4, 4)), P=np.zeros((2, 3, 4)),
-                          scale=np.ones((7, 4)), group=group)
-    assert modal.pieces == [(0, 2, 0), (2, 4, 0), (4, 5, 0), (5, 7, 1)]
-
-
 def test_pieces_change_nothing(impacts, monkeypatch):
     # the shared runs (40 rows each) updated in pieces of 7 rows, cutting every run, against
     # whole runs: the same impacts to rounding
     monkeypatch.setattr(march, "_SHARED_ROWS", 1)
     whole = _march(impacts, 1, monkeypatch)
-    monkeypatch.setattr(march, "_PIECE_ENTRIES", 7 * impacts[0].omega.shape[1])
+    monkeypatch.setattr(modal_update, "PIECE_ENTRIES", 7 * impacts[0].omega.shape[1])
     cut = _march(impacts, 1, monkeypatch)
     for name in ("impulse", "time", "peak_force", "max_compression", "barrel_share"):
         np.testing.assert_allclose(getattr(cut, name), getattr(whole, name), rtol=1e-12,
@@ -111,34 +90,15 @@ def test_a_mode_that_nothing_drives_stays_at_rest(impacts, monkeypatch):
 
 def test_the_turning_frames_change_nothing(impacts, monkeypatch):
     # the shared runs' state kept in frames that turn with the free modes, folded back every
-    # _FRAME_STEPS steps (the impacts end between folds, so their state is read from inside a
+    # FRAME_STEPS steps (the impacts end between folds, so their state is read from inside a
     # frame), against folded back at every step, which is the plain propagation Y <- e1 Y:
     # the same impacts to rounding
     monkeypatch.setattr(march, "_SHARED_ROWS", 1)
     turning = _march(impacts, 1, monkeypatch)
-    monkeypatch.setattr(march, "_FRAME_STEPS", 1)
+    monkeypatch.setattr(modal_update, "FRAME_STEPS", 1)
     plain = _march(impacts, 1, monkeypatch)
     for name in ("impulse", "time", "peak_force", "max_compression", "barrel_share"):
         np.testing.assert_allclose(getattr(turning, name), getattr(plain, name), rtol=1e-12,
                                    err_msg=name)
     np.testing.assert_allclose(turning.modal, plain.modal, rtol=0,
                                atol=1e-12 * np.abs(plain.modal).max())
-
-
-def test_a_damped_run_folds_its_frame_sooner():
-    # each run folds after at most _FRAME_STEPS steps of its own, and before its most damped
-    # mode's |1/e1^k| passes e^_FRAME_GROWTH: here 50 // 3 = 16 steps for a decay of 3 per
-    # step. The frame's forcing is P / e1^(k+1) and its read-out R e1^(k+1).
-    e1 = np.exp(np.array([[-1e-4 + 0.3j, -2e-3 + 1.0j], [-0.5 + 0.2j, -3.0 + 2.0j]]))
-    rng = np.random.default_rng(0)
-    R, P = rng.standard_normal((2, 4, 4)), rng.standard_normal((2, 3, 4))
-    turns = march._Turns.of(e1, R, P)
-    assert list(turns.steps) == [march._FRAME_STEPS, 16]
-    for g, steps in enumerate(turns.steps):
-        assert np.abs(1 / turns.turn[steps, g]).max() <= np.exp(march._FRAME_GROWTH)
-    k, g = 5, 1
-    np.testing.assert_allclose(turns.P[k, g].view(complex) * e1[g] ** (k + 1),
-                               P[g].view(complex), rtol=1e-13)
-    y = rng.standard_normal(4)  # Y as floats: Y = e1^(k+1) X
-    x = (y.view(complex) / e1[g] ** (k + 1)).view(float)
-    np.testing.assert_allclose(x @ turns.R[k, g], y @ R[g], rtol=1e-12)

@@ -1,0 +1,166 @@
+"""How a step of :func:`~batcert.physics.march.march` advances the modal state and reads
+the contact point's free motion from it.
+
+The state is ``Y = c_y Z`` (n, K) complex, one row per impact (:mod:`batcert.physics.march`).
+Each step propagates it exactly, adds the forcing of the step's contact forces (F0, Fa + Fb,
+Fc) and reads four numbers per row: the free ``y`` after h/2 and h, ``y'`` and ``y``.
+:class:`RowByRow` does this for rows with modes of their own; :class:`SharedRuns` for runs of
+rows that share their modes (one bat each), with matrix products over cache-sized pieces of
+the rows and the state kept in frames that turn with the free modes (:class:`Turns`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+# each step's modal update runs over pieces of rows of about this many impact-mode entries, so
+# that a piece's state, forcing and read-out stay in the processor's cache while the per-impact
+# arithmetic runs over the whole chunk (measured, 20,000 random impacts: pieces of 512-1675
+# hollow rows alike; a solid bat's 18 modes fastest whole, 4096 rows, 4 % ahead of 2503-row
+# pieces). ("pieces", not "blocks": a LinearSystem's blocks are the rows of one bat.)
+PIECE_ENTRIES = 73_728
+# runs of shared modes keep their state in a frame turning with the free modes (Turns), folded
+# back at most every FRAME_STEPS steps, and before a damped mode's growth 1/|e1^k| exceeds
+# e^FRAME_GROWTH (far from overflow, and without loss of precision: the state is read as
+# e1^k X, relative to its latest forcing)
+FRAME_STEPS = 32
+FRAME_GROWTH = 50.0
+
+
+@dataclass
+class RowByRow:
+    """Each row's own propagator ``e1`` (n, K), read-out ``R`` (n, 4, 2K) and forcing ``B``
+    (n, 3, 2K) of ``Y`` (``R`` and ``B`` on ``Y`` as floats): the free ``y`` after h/2 and h,
+    ``y'`` and ``y`` now; the change of ``Y`` per (F0, Fa + Fb, Fc)."""
+
+    e1: np.ndarray
+    R: np.ndarray
+    B: np.ndarray
+
+    def advance(self, z: np.ndarray, f: np.ndarray) -> np.ndarray:
+        """Advance ``z`` (``Y``, (n, K) complex) by one step in place under the forces ``f``
+        (n, 3); return the read-out of the new ``Y``, (n, 4)."""
+        z *= self.e1
+        y = z.view(float)
+        y += np.matmul(f[:, None, :], self.B)[:, 0, :]
+        return np.matmul(self.R, y[:, :, None])[:, :, 0]
+
+    def current(self, z: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """``Y`` of ``rows`` (indices or a mask): the state itself."""
+        return z[rows]
+
+    def take(self, keep: np.ndarray) -> RowByRow:
+        return RowByRow(self.e1[keep], self.R[keep], self.B[keep])
+
+
+@dataclass
+class SharedRuns:
+    """:class:`RowByRow` for runs of rows that share their modes (one bat each): one
+    propagator ``e1`` (runs, K), read-out ``R`` (runs, 2K, 4) and forcing ``P`` (runs, 3, 2K)
+    per run, applied with one matrix product per piece of a run's rows (at most about
+    ``PIECE_ENTRIES`` impact-mode entries); the forcing scaled per row by ``scale`` = ``c_y g``
+    (n, 2K).
+
+    Each run's state is kept in a frame that turns with its free modes (:class:`Turns`):
+    ``z`` holds ``X = Y / e1^k``, ``k`` steps after the run's state was last folded back to
+    ``Y``, so that a step only forces and reads the state and never propagates it;
+    :meth:`current` gives ``Y``."""
+
+    e1: np.ndarray
+    R: np.ndarray
+    P: np.ndarray
+    scale: np.ndarray
+    group: np.ndarray  # each row's run, (n,)
+    turns: Turns | None = None  # the frames' forcing and read-out (built from e1, R, P)
+    k: np.ndarray | None = None  # each run's steps since its state was last folded, (runs,)
+
+    def __post_init__(self) -> None:
+        cuts = np.flatnonzero(np.diff(self.group)) + 1
+        bounds = np.concatenate([[0], cuts, [self.group.size]])
+        rows = max(1, PIECE_ENTRIES // max(self.e1.shape[1], 1))
+        self.pieces = [(a, min(a + rows, int(b)), int(self.group[a0]))
+                       for a0, b in zip(bounds[:-1], bounds[1:], strict=True)
+                       for a in range(int(a0), int(b), rows)]
+        if self.turns is None:
+            self.turns = Turns.of(self.e1, self.R, self.P)
+        if self.k is None:
+            self.k = np.zeros(self.e1.shape[0], dtype=int)
+
+    def advance(self, z: np.ndarray, f: np.ndarray) -> np.ndarray:
+        y = z.view(float)
+        turns, k = self.turns, self.k
+        assert turns is not None and k is not None
+        if len(self.pieces) == 1:  # the common small batch: no slicing (the replay's steps)
+            g = self.pieces[0][2]
+            push = f @ turns.P[k[g], g]
+            push *= self.scale
+            y += push
+            out = y @ turns.R[k[g], g]
+        else:
+            out = np.empty((y.shape[0], 4))
+            for a, b, g in self.pieces:
+                push = f[a:b] @ turns.P[k[g], g]
+                push *= self.scale[a:b]
+                y[a:b] += push
+                np.matmul(y[a:b], turns.R[k[g], g], out=out[a:b])
+        k += 1
+        full = k == turns.steps
+        if full.any():  # fold these runs' frames back: z holds their Y again
+            for a, b, g in self.pieces:
+                if full[g]:
+                    z[a:b] *= turns.turn[k[g], g]
+            k[full] = 0
+        return out
+
+    def current(self, z: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """``Y`` of ``rows`` (indices or a mask) from the state ``z``."""
+        assert self.turns is not None and self.k is not None
+        g = self.group[rows]
+        return z[rows] * self.turns.turn[self.k[g], g]
+
+    def take(self, keep: np.ndarray) -> SharedRuns:
+        return SharedRuns(self.e1, self.R, self.P, self.scale[keep], self.group[keep], self.turns,
+                       self.k)
+
+
+@dataclass(frozen=True)
+class Turns:
+    """The forcing and read-out of :class:`SharedRuns`'s turning frames ``X = Y / e1^k``:
+    ``Y_(k+1) = e1 Y_k + scale (f P)`` is ``X_(k+1) = X_k + scale (f P_k)`` with
+    ``P_k = P / e1^(k+1)``, and ``Y_(k+1)`` is read from ``X_(k+1)`` with ``R_k = R e1^(k+1)``
+    (the scale is real, so it commutes with the turn). This leaves out the elementwise complex
+    propagation of every row's state at every step, the modal update's most expensive part
+    (measured, docs/performance.md). A run's state is folded back every ``steps`` steps of its
+    own: at most ``FRAME_STEPS``, and few enough that its most damped mode's ``|1/e1^k|``
+    stays below ``e^FRAME_GROWTH`` (so a run's rounding does not depend on what it is stacked
+    with).
+    """
+
+    turn: np.ndarray  # e1^k for k = 0 .. max(steps), (max(steps) + 1, runs, K)
+    P: np.ndarray  # forcing of X over the step from k to k + 1, (max(steps), runs, 3, 2K)
+    R: np.ndarray  # read-out of Y_(k+1) from X_(k+1), (max(steps), runs, 2K, 4)
+    steps: np.ndarray  # each run's steps between folds, (runs,)
+
+    @classmethod
+    def of(cls, e1: np.ndarray, R: np.ndarray, P: np.ndarray) -> Turns:
+        decay = np.max(-np.log(np.abs(e1)), axis=1, initial=0.0)  # per step, (runs,)
+        steps = np.clip(FRAME_GROWTH // np.maximum(decay, 1e-300), 1, FRAME_STEPS).astype(int)
+        longest = int(steps.max(initial=1))
+        turn = np.ones((longest + 1,) + e1.shape, dtype=complex)
+        np.cumprod(np.broadcast_to(e1, (longest,) + e1.shape), axis=0, out=turn[1:])
+        push = np.ascontiguousarray(P).view(complex)  # (runs, 3, K)
+        forcing = np.ascontiguousarray(push[None] / turn[1:, :, None, :]).view(float)
+        weights = R[:, 1::2, :] + 1j * R[:, 0::2, :]  # Im(sum w Y) = R . Y as floats, (runs, K, 4)
+        turned = weights[None] * turn[1:, ..., None]
+        read = np.empty(turned.shape[:2] + (2 * turned.shape[2], turned.shape[3]))
+        read[:, :, 0::2], read[:, :, 1::2] = turned.imag, turned.real
+        return cls(turn, forcing, read, steps)
+
+
+def im_weights(coef: np.ndarray) -> np.ndarray:
+    """Weights ``wt`` with ``Im(sum coef Y) = wt . Y.view(float)``, (..., 2K)."""
+    wt = np.empty(coef.shape[:-1] + (2 * coef.shape[-1],))
+    wt[..., 0::2], wt[..., 1::2] = coef.imag, coef.real
+    return wt

@@ -26,11 +26,14 @@ def patch_reader(z_nodes: np.ndarray, z_points: np.ndarray, weights: np.ndarray)
     i = np.clip(np.searchsorted(z_nodes, zp, side="right") - 1, 0, z_nodes.size - 2)
     t = np.clip((zp - z_nodes[i]) / (z_nodes[i + 1] - z_nodes[i]), 0.0, 1.0)
     w = np.asarray(weights, dtype=float)
-    rows = np.broadcast_to(np.arange(zp.shape[0])[:, None], zp.shape)
-    a = np.zeros((zp.shape[0], z_nodes.size))
-    np.add.at(a, (rows, i), (1.0 - t) * w)
-    np.add.at(a, (rows, i + 1), t * w)
-    return a
+    n = z_nodes.size
+    cell = np.arange(zp.shape[0]).reshape((-1,) + (1,) * (zp.ndim - 1)) * n + i
+    # each point's two shares summed into their nodes, the lower nodes' first (one bincount,
+    # in the order np.add.at would add them)
+    a = np.bincount(np.concatenate([cell.ravel(), cell.ravel() + 1]),
+                    np.concatenate([((1.0 - t) * w).ravel(), (t * w).ravel()]),
+                    minlength=zp.shape[0] * n)
+    return a.reshape(zp.shape[0], n)
 
 
 def residual_compliance(bat: BatModel, modes: Modes, z_points, weights=None,

@@ -45,6 +45,7 @@ from batcert.physics.shell import (
     circumferential_factor,
     harmonic_modes,
     normal_reader,
+    normal_weights,
     static_solve,
 )
 
@@ -377,19 +378,14 @@ class PatchLoads:
                                                          strict=True)]
 
 
-# order 2's unknowns per node (u_z, V, V', u_r, W') -> slots of the W space (u_z, u_r, W')
-_W_SLOT = np.array([0, 2, 2, 1, 2])
-
-
 def _w_load(shell: ShellOfRevolution, points: np.ndarray, weights: np.ndarray) -> PatchLoads:
-    """Each impact's patch as W-space load: the weights with which
-    :func:`~batcert.physics.shell.normal_reader` reads ``W`` from the nodes' ``u_z``, ``u_r``,
-    ``W'``, gathered into one window per patch (the widest patch's width, the window moved
+    """Each impact's patch as W-space load (the nodes' ``u_z``, ``u_r``, ``W'``, three per node):
+    the weights with which :func:`~batcert.physics.shell.normal_weights` reads ``W`` at each
+    point, gathered into one window per patch (the widest patch's width, the window moved
     inside the wall at its ends); a patch off the wall loads nothing."""
     p = points.shape[0]
-    cols, h = normal_reader(shell, 2, points)  # order 2's layout: 5 dofs per node
-    node, slot = np.divmod(cols, 5)
-    w_cols = (3 * node + _W_SLOT[slot]).reshape(p, -1)
+    e, h = normal_weights(shell, points)
+    w_cols = (3 * e[..., None] + np.arange(6)).reshape(p, -1)  # node e's three, then e + 1's
     values = (h * weights[..., None]).reshape(p, -1)
     size = 3 * shell.z.size
     live = values != 0
@@ -398,7 +394,8 @@ def _w_load(shell: ShellOfRevolution, points: np.ndarray, weights: np.ndarray) -
     on = hi >= 0
     width = int((hi - lo)[on].max(initial=0)) + 1
     start = np.where(on, np.clip(lo, 0, size - width), 0)
-    local = np.where(live, w_cols - start[:, None], 0)
+    # a point's zero weights land anywhere in its own row's window (adding zero changes nothing)
+    local = np.clip(w_cols - start[:, None], 0, width - 1)
     f = np.bincount((np.arange(p)[:, None] * width + local).ravel(), values.ravel(),
                     p * width).reshape(p, width)
     return PatchLoads(start, f, size)

@@ -387,11 +387,21 @@ def harmonic_modes(shell: ShellOfRevolution, n: int, max_frequency: float,
 def normal_reader(shell: ShellOfRevolution, n: int, z: np.ndarray):
     """How to read ``W`` (the normal displacement amplitude) of order ``n`` at axial positions
     ``z`` (any shape) from a full dof vector: the dof columns (..., 6) and weights (..., 6) of
-    the containing element's ``u_z``, ``u_r`` and ``W'`` at its two nodes (``W`` is cubic
-    Hermite in the element's normal displacement ``-sin psi u_z + cos psi u_r`` and its slope);
+    the containing element's ``u_z``, ``u_r`` and ``W'`` at its two nodes (:func:`normal_weights`);
     points off the shell get zero weights."""
     nd = shell.node_dofs(n)
     w_off = 1 if n == 0 else 3
+    e, h = normal_weights(shell, z)
+    cols = np.stack([nd * e, nd * e + w_off, nd * e + w_off + 1,
+                     nd * (e + 1), nd * (e + 1) + w_off, nd * (e + 1) + w_off + 1], axis=-1)
+    return cols, h
+
+
+def normal_weights(shell: ShellOfRevolution, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The element that contains each axial position ``z`` (any shape), and the weights (..., 6)
+    with which ``W`` there is read from that element's ``u_z``, ``u_r``, ``W'`` at its first and
+    then its second node: ``W`` is cubic Hermite in the element's normal displacement
+    ``-sin psi u_z + cos psi u_r`` and its slope. Points off the shell get zero weights."""
     inside = (z >= shell.z[0]) & (z <= shell.z[-1])
     e = np.clip(np.searchsorted(shell.z, z, side="right") - 1, 0, shell.n_elements - 1)
     xi = np.clip((z - shell.z[e]) / (shell.z[e + 1] - shell.z[e]), 0.0, 1.0)
@@ -400,10 +410,12 @@ def normal_reader(shell: ShellOfRevolution, n: int, z: np.ndarray):
     cp = (shell.z[e + 1] - shell.z[e]) / L
     h0, h1 = 1 - 3 * xi**2 + 2 * xi**3, L * (xi - 2 * xi**2 + xi**3)
     h2, h3 = 3 * xi**2 - 2 * xi**3, L * (-xi**2 + xi**3)
-    h = np.stack([-sp * h0, cp * h0, h1, -sp * h2, cp * h2, h3], axis=-1) * inside[..., None]
-    cols = np.stack([nd * e, nd * e + w_off, nd * e + w_off + 1,
-                     nd * (e + 1), nd * (e + 1) + w_off, nd * (e + 1) + w_off + 1], axis=-1)
-    return cols, h
+    h = np.empty(np.shape(z) + (6,))
+    h[..., 0], h[..., 1], h[..., 2] = -sp * h0, cp * h0, h1
+    h[..., 3], h[..., 4], h[..., 5] = -sp * h2, cp * h2, h3
+    if not inside.all():
+        h *= inside[..., None]
+    return e, h
 
 
 def circumferential_factor(n, half_angle) -> np.ndarray:

@@ -74,7 +74,7 @@ class SharedRuns:
     scale: np.ndarray
     group: np.ndarray  # each row's run, (n,)
     turns: Turns | None = None  # the frames' forcing and read-out (built from e1, R, P)
-    k: np.ndarray | None = None  # each run's steps since its state was last folded, (runs,)
+    k: list[int] | None = None  # each run's steps since its state was last folded back
 
     def __post_init__(self) -> None:
         cuts = np.flatnonzero(np.diff(self.group)) + 1
@@ -86,7 +86,7 @@ class SharedRuns:
         if self.turns is None:
             self.turns = Turns.of(self.e1, self.R, self.P)
         if self.k is None:
-            self.k = np.zeros(self.e1.shape[0], dtype=int)
+            self.k = [0] * self.e1.shape[0]
 
     def advance(self, z: np.ndarray, f: np.ndarray) -> np.ndarray:
         y = z.view(float)
@@ -105,20 +105,20 @@ class SharedRuns:
                 push *= self.scale[a:b]
                 y[a:b] += push
                 np.matmul(y[a:b], turns.R[k[g], g], out=out[a:b])
-        k += 1
-        full = k == turns.steps
-        if full.any():  # fold these runs' frames back: z holds their Y again
-            for a, b, g in self.pieces:
-                if full[g]:
-                    z[a:b] *= turns.turn[k[g], g]
-            k[full] = 0
+        for g, steps in enumerate(turns.steps):
+            k[g] += 1
+            if k[g] == steps:  # fold the run's frame back: z holds its Y again
+                for a, b, run in self.pieces:
+                    if run == g:
+                        z[a:b] *= turns.turn[steps, g]
+                k[g] = 0
         return out
 
     def current(self, z: np.ndarray, rows: np.ndarray) -> np.ndarray:
         """``Y`` of ``rows`` (indices or a mask) from the state ``z``."""
         assert self.turns is not None and self.k is not None
         g = self.group[rows]
-        return z[rows] * self.turns.turn[self.k[g], g]
+        return z[rows] * self.turns.turn[np.asarray(self.k)[g], g]
 
     def take(self, keep: np.ndarray) -> SharedRuns:
         return SharedRuns(self.e1, self.R, self.P, self.scale[keep], self.group[keep], self.turns,
@@ -141,7 +141,7 @@ class Turns:
     turn: np.ndarray  # e1^k for k = 0 .. max(steps), (max(steps) + 1, runs, K)
     P: np.ndarray  # forcing of X over the step from k to k + 1, (max(steps), runs, 3, 2K)
     R: np.ndarray  # read-out of Y_(k+1) from X_(k+1), (max(steps), runs, 2K, 4)
-    steps: np.ndarray  # each run's steps between folds, (runs,)
+    steps: tuple[int, ...]  # each run's steps between folds
 
     @classmethod
     def of(cls, e1: np.ndarray, R: np.ndarray, P: np.ndarray) -> Turns:
@@ -156,7 +156,7 @@ class Turns:
         turned = weights[None] * turn[1:, ..., None]
         read = np.empty(turned.shape[:2] + (2 * turned.shape[2], turned.shape[3]))
         read[:, :, 0::2], read[:, :, 1::2] = turned.imag, turned.real
-        return cls(turn, forcing, read, steps)
+        return cls(turn, forcing, read, tuple(int(n) for n in steps))
 
 
 def im_weights(coef: np.ndarray) -> np.ndarray:

@@ -283,7 +283,7 @@ def _coefficients(system: LinearSystem, h: float, k1, alpha, beta) -> _Coefficie
             return np.concatenate([np.broadcast_to(blk[i], (blk[1] - blk[0],) + blk[i].shape[1:])
                                    for blk in blocks])
         modal = RowByRow(e1=rows(3), R=np.ascontiguousarray(rows(4)),
-                          B=np.ascontiguousarray(cg[:, None, :] * rows(5)).view(float))
+                         B=np.ascontiguousarray(cg[:, None, :] * rows(5)).view(float))
     return _Coefficients(
         ka=ka, b0=-h * h / 4 * inv_mu, c0=c0, cb=2 * ka, ca=-h * h / 2 * inv_mu,
         w6=-h * h / 6 * inv_mu, v6=-h / 6 * inv_mu, c_y=c_y, beta=beta, ab=alpha - beta,

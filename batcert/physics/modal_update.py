@@ -2,8 +2,9 @@
 the contact point's free motion from it.
 
 The state is ``Y = c_y Z`` (n, K) complex, one row per impact (:mod:`batcert.physics.march`).
-Each step propagates it exactly, adds the forcing of the step's contact forces (F0, Fa + Fb,
-Fc) and reads four numbers per row: the free ``y`` after h/2 and h, ``y'`` and ``y``.
+Each step advances it by the free modes' exact propagation and the forcing of the step's
+contact forces (F0, Fa + Fb, Fc), and reads four numbers per row: the free ``y`` after h/2 and
+h, ``y'`` and ``y``.
 :class:`RowByRow` does this for rows with modes of their own; :class:`SharedRuns` for runs of
 rows that share their modes (one bat each), with matrix products over cache-sized pieces of
 the rows and the state kept in frames that turn with the free modes (:class:`Turns`).
@@ -89,6 +90,7 @@ class SharedRuns:
             self.k = [0] * self.e1.shape[0]
 
     def advance(self, z: np.ndarray, f: np.ndarray) -> np.ndarray:
+        """:meth:`RowByRow.advance`, the state ``z`` kept in the runs' frames."""
         y = z.view(float)
         turns, k = self.turns, self.k
         assert turns is not None and k is not None
@@ -121,8 +123,8 @@ class SharedRuns:
         return z[rows] * self.turns.turn[np.asarray(self.k)[g], g]
 
     def take(self, keep: np.ndarray) -> SharedRuns:
-        return SharedRuns(self.e1, self.R, self.P, self.scale[keep], self.group[keep], self.turns,
-                       self.k)
+        return SharedRuns(self.e1, self.R, self.P, self.scale[keep], self.group[keep],
+                          self.turns, self.k)
 
 
 @dataclass(frozen=True)
@@ -153,9 +155,8 @@ class Turns:
         push = np.ascontiguousarray(P).view(complex)  # (runs, 3, K)
         forcing = np.ascontiguousarray(push[None] / turn[1:, :, None, :]).view(float)
         weights = R[:, 1::2, :] + 1j * R[:, 0::2, :]  # Im(sum w Y) = R . Y as floats, (runs, K, 4)
-        turned = weights[None] * turn[1:, ..., None]
-        read = np.empty(turned.shape[:2] + (2 * turned.shape[2], turned.shape[3]))
-        read[:, :, 0::2], read[:, :, 1::2] = turned.imag, turned.real
+        turned = weights[None] * turn[1:, ..., None]  # (steps, runs, K, 4)
+        read = np.ascontiguousarray(im_weights(turned.swapaxes(-1, -2)).swapaxes(-1, -2))
         return cls(turn, forcing, read, tuple(int(n) for n in steps))
 
 

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from batcert.physics import stores
 from batcert.physics.batmodel import BatModel
 from batcert.physics.beam import assemble, check_support, free_dofs, rigid_modes
 from batcert.physics.modes import Modes
@@ -93,7 +94,7 @@ class _Flexibility:
     nodal: np.ndarray  # elastic flexibility between the nodes' transverse displacements, (N, N)
 
 
-_FLEX_CACHE: dict = {}
+_FLEX_CACHE: stores.Memo[int, tuple[Modes, _Flexibility]] = stores.Memo(32)  # by id(modes)
 
 
 def _flexibility(bat: BatModel, modes: Modes) -> _Flexibility:
@@ -101,7 +102,7 @@ def _flexibility(bat: BatModel, modes: Modes) -> _Flexibility:
     (or the flexibility that came with the modes, :mod:`batcert.physics.ritz`)."""
     if modes.flexibility is not None:
         return _Flexibility(modes.z, modes.flexibility)
-    hit = _FLEX_CACHE.get(id(modes))
+    hit = _FLEX_CACHE.look(id(modes))
     if hit is not None and hit[0] is modes:
         return hit[1]
     fe = assemble(bat, modes.z)
@@ -128,9 +129,7 @@ def _flexibility(bat: BatModel, modes: Modes) -> _Flexibility:
     held = w_rows < 0
     nodal[np.ix_(~held, ~held)] = x[np.ix_(w_rows[~held], w_rows[~held])]
     flex = _Flexibility(fe.z, 0.5 * (nodal + nodal.T))
-    _FLEX_CACHE[id(modes)] = (modes, flex)
-    while len(_FLEX_CACHE) > 32:
-        _FLEX_CACHE.pop(next(iter(_FLEX_CACHE)))
+    _FLEX_CACHE.keep(id(modes), (modes, flex))
     return flex
 
 

@@ -43,7 +43,8 @@ MEMO_ROWS = 2048
 
 class Memo(OrderedDict[K, V]):
     """An in-process memo that keeps its ``size`` most recently used entries (the one LRU
-    dict of the physics' memos: modes, barrel walls, patch readings, step exponentials)."""
+    dict of the physics' memos: modes, barrel walls, patch readings, beam flexibilities, step
+    exponentials)."""
 
     def __init__(self, size: int) -> None:
         super().__init__()

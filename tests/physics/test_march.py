@@ -50,18 +50,23 @@ def _march(impacts, shared_rows: int, monkeypatch, restitution=True):
                        law if restitution else None)
 
 
+def _assert_same_impacts(got, want):
+    """Two marches' separations alike to rounding (1e-12, module notes); the modal coordinates
+    at separation, unscaled, compared against their largest."""
+    for name in ("impulse", "time", "peak_force", "max_compression", "barrel_share"):
+        np.testing.assert_allclose(getattr(got, name), getattr(want, name), rtol=1e-12,
+                                   err_msg=name)
+    np.testing.assert_allclose(got.modal, want.modal, rtol=0,
+                               atol=1e-12 * np.abs(want.modal).max())
+
+
 @pytest.mark.parametrize("restitution", [True, False])
 def test_shared_runs_and_row_by_row_give_the_same_impacts(impacts, monkeypatch, restitution):
     shared = _march(impacts, 1, monkeypatch, restitution)  # two runs of 40 rows: shared
     rows = _march(impacts, 10**6, monkeypatch, restitution)  # every row its own
     assert shared.separated.all() and rows.separated.all()
     assert np.ptp(shared.time) > 0.1 * shared.time.max()  # rows finish at different times
-    for name in ("impulse", "time", "peak_force", "max_compression", "barrel_share"):
-        np.testing.assert_allclose(getattr(shared, name), getattr(rows, name), rtol=1e-12,
-                                   err_msg=name)
-    # the modal coordinates at separation, unscaled: compared against their largest
-    scale = np.abs(rows.modal).max()
-    np.testing.assert_allclose(shared.modal, rows.modal, rtol=0, atol=1e-12 * scale)
+    _assert_same_impacts(shared, rows)
 
 
 def test_pieces_change_nothing(impacts, monkeypatch):
@@ -71,11 +76,7 @@ def test_pieces_change_nothing(impacts, monkeypatch):
     whole = _march(impacts, 1, monkeypatch)
     monkeypatch.setattr(modal_update, "PIECE_ENTRIES", 7 * impacts[0].omega.shape[1])
     cut = _march(impacts, 1, monkeypatch)
-    for name in ("impulse", "time", "peak_force", "max_compression", "barrel_share"):
-        np.testing.assert_allclose(getattr(cut, name), getattr(whole, name), rtol=1e-12,
-                                   err_msg=name)
-    np.testing.assert_allclose(cut.modal, whole.modal, rtol=0,
-                               atol=1e-12 * np.abs(whole.modal).max())
+    _assert_same_impacts(cut, whole)
 
 
 def test_a_mode_that_nothing_drives_stays_at_rest(impacts, monkeypatch):
@@ -97,8 +98,4 @@ def test_the_turning_frames_change_nothing(impacts, monkeypatch):
     turning = _march(impacts, 1, monkeypatch)
     monkeypatch.setattr(modal_update, "FRAME_STEPS", 1)
     plain = _march(impacts, 1, monkeypatch)
-    for name in ("impulse", "time", "peak_force", "max_compression", "barrel_share"):
-        np.testing.assert_allclose(getattr(turning, name), getattr(plain, name), rtol=1e-12,
-                                   err_msg=name)
-    np.testing.assert_allclose(turning.modal, plain.modal, rtol=0,
-                               atol=1e-12 * np.abs(plain.modal).max())
+    _assert_same_impacts(turning, plain)

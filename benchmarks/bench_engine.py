@@ -185,20 +185,29 @@ def large_batches(engine: FlexibleEngine, quick: bool) -> None:
                        f"allocated: {peak:7.1f} MB ({peak * 1e3 / n:.1f} kB per impact)", peak)
 
 
+CONVERGED = dict(n_modes=48, time_step=2.5e-6, shell_max_frequency=16e3)
+
+
+def protocol_values(jobs, engine) -> list[list[float]]:
+    """Every condition's exit speed and the metric of each ``(built bat, protocol, ball)`` job
+    (tests/engines/test_convergence.py compares the same numbers)."""
+    return [[c.exit_speed for c in r.conditions] + [r.value] for r in run_protocols(jobs, engine)]
+
+
+def largest_difference(values, converged, rows) -> float:
+    """The largest relative difference of ``values`` from ``converged`` over the jobs ``rows``."""
+    return max(abs(a / b - 1) for k in rows for a, b in zip(values[k], converged[k], strict=True))
+
+
 def accuracy() -> None:
     bats = [load_bat_any(b).built for b in SHIPPED_BATS]
     protocols = [load_protocol_any(p) for p in SHIPPED_PROTOCOLS]
     jobs = [(b, p.protocol, p.ball) for b in bats for p in protocols]
-
-    def values(engine):
-        return [[c.exit_speed for c in r.conditions] + [r.value]
-                for r in run_protocols(jobs, engine)]
-    converged = values(FlexibleEngine(n_modes=48, time_step=2.5e-6, shell_max_frequency=16e3))
-    default = values(FlexibleEngine())
+    converged = protocol_values(jobs, FlexibleEngine(**CONVERGED))
+    default = protocol_values(jobs, FlexibleEngine())
     for i, bat in enumerate(SHIPPED_BATS):
-        rows = range(i * len(protocols), (i + 1) * len(protocols))
-        err = max(abs(a / b - 1) for k in rows for a, b in zip(default[k], converged[k],
-                                                               strict=True))
+        err = largest_difference(default, converged,
+                                 range(i * len(protocols), (i + 1) * len(protocols)))
         report(f"error_{bat}", f"{bat:<15} every exit speed and metric, all protocols: "
                f"largest relative difference from converged {err:.1e}  [target 2e-4]", err)
 

@@ -29,6 +29,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "tests" / "engines"))
 
 from r161 import r161_bat  # noqa: E402
+from test_convergence import CONVERGED  # noqa: E402  (the converged engine's settings)
 from test_flexible import BALL, BARREL_D, hollow_bat, reference_impact  # noqa: E402
 
 import batcert.engines.flexible as flexible_module  # noqa: E402
@@ -183,9 +184,6 @@ def large_batches(engine: FlexibleEngine, quick: bool) -> None:
                 tracemalloc.stop()
                 report(f"peak_mb_{name}_{n}", f"{name:<13} {n:>7} random impacts, peak memory "
                        f"allocated: {peak:7.1f} MB ({peak * 1e3 / n:.1f} kB per impact)", peak)
-
-
-CONVERGED = dict(n_modes=48, time_step=2.5e-6, shell_max_frequency=16e3)
 
 
 def protocol_values(jobs, engine) -> list[list[float]]:

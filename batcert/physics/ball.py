@@ -1,4 +1,4 @@
-"""The ball: mass, size, speed-dependent rigid-wall COR and contact-law parameters."""
+"""The ball: mass, size and contact law (a law of :data:`batcert.physics.balls.LAWS`)."""
 
 from __future__ import annotations
 
@@ -6,23 +6,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from batcert.physics.balls import PowerLawHysteresis, Viscoelastic
+
 
 @dataclass(frozen=True)
 class BallModel:
     name: str
     mass: float  # [kg]
     radius: float  # [m]
-    cor_speeds: tuple[float, ...]  # impact speeds of the COR points, ascending [m/s]
-    cor_values: tuple[float, ...]  # rigid-wall COR at those speeds [-]
-    contact_model: str = "power-law-hysteresis"
-    k1: float = 6.53e7  # compression stiffness of F = k1 u^alpha [N / m^alpha] (Nathan 2000)
-    alpha: float = 1.84  # compression exponent [-] (Nathan 2000)
+    law: PowerLawHysteresis | Viscoelastic  # contact law with its parameters
 
-    def cor(self, speed: np.ndarray | float) -> np.ndarray:
-        """Rigid-wall COR at normal impact speed ``speed`` [m/s].
+    def cor(self, speed: np.ndarray | float) -> np.ndarray | float:
+        """Rigid-wall COR at normal impact speed ``speed`` [m/s] (the law's: the spec's points
+        for Nathan's law, the integrated wall impact for the viscoelastic law)."""
+        return self.law.wall_cor(self.mass, speed)
 
-        Piecewise linear in speed between the spec's points and held constant beyond the first
-        and last point (no extrapolation). A single point gives a speed-independent COR.
-        """
-        v = np.abs(np.asarray(speed, dtype=float))
-        return np.interp(v, self.cor_speeds, self.cor_values)
+    @property
+    def contact_model(self) -> str:
+        """The law's name (the ball file's ``contact.model``)."""
+        return self.law.name

@@ -32,6 +32,14 @@ CODE = {
     # batcert.physics.barrel.cached_barrel_modes: a hollow bat's nominal wall
     "barrel": ("batcert.physics.barrel", "batcert.physics.shell", "batcert.physics.banded",
                "numpy", "scipy"),
+    # batcert.physics.balls.impact1d.wall_table: a ball's COR and compression at a wall
+    "ball-wall": ("batcert.physics.balls.impact1d", "batcert.physics.balls.viscoelastic",
+                  "batcert.physics.balls.hysteresis", "batcert.physics.etd", "numpy"),
+    # batcert.physics.balls.fit.cached_fit: a viscoelastic ball's parameters from its tests
+    "ball-fit": ("batcert.physics.balls.fit", "batcert.physics.balls.impact1d",
+                 "batcert.physics.balls.viscoelastic", "batcert.physics.balls.footprint",
+                 "batcert.physics.etd",
+                 "numpy", "scipy"),
 }
 
 _STORES: dict[str, Store] = {}

@@ -1,0 +1,397 @@
+"""The viscoelastic ball's parameters from ball tests: a weighted least-squares fit.
+
+What a ball lab measures, and what the law predicts for it (all by integrating the ball against
+a rigid surface, :func:`batcert.physics.balls.impact1d.body_impact`, except the quasi-static
+compression):
+
+* ``cor``: the COR against a rigid flat wall at a speed (ASTM F1887 at 60 mph; cannon tests);
+* ``cylinder_cor``: against a rigid cylinder of a stated diameter (ASTM F2845's CCOR); the
+  cylinder's contact is softer by Hertz's :func:`~batcert.physics.balls.footprint.stiffness_ratio`;
+* ``peak_force``: the largest force of a rigid-wall (or cylinder) impact at a speed;
+* ``collision_time``: the time over which the central 99 % of the impulse acts (Nathan 2000's
+  definition), and ``contact_time``: first touch to separation, against a rigid wall;
+* ``compression``: the force of a slow diametral squeeze between flat platens by a stated
+  displacement (ASTM F1888: 0.25 in). Slow against ``tau``, so the relaxed stiffness holds; the
+  two contacts are in series, each compressed by half the displacement:
+  ``F = r k0 (d / 2)^a``.
+
+The fit minimises ``sum ((model - value) / u)^2`` over the parameters ``log k0``, ``a``,
+``logit r``, ``log tau`` (Levenberg-Marquardt with bounds, :func:`scipy.optimize.least_squares`,
+from a start read off the data), and is refused (:class:`FitError`) when it cannot be trusted:
+fewer tests than parameters, no COR or no stiffness-bearing test (time, force, compression),
+parameters that the data do not determine (a singular Jacobian), a parameter at a bound of its
+plausible range, or a test missed by more than ``MAX_RESIDUAL`` of its uncertainties. The
+test blamed for a miss is the one the law fitted to the other tests misses most (a bad point
+pulls the fit towards itself, so the largest residual of the full fit is often a good
+neighbour's). The
+parameters' standard uncertainties come from the Jacobian (``(J^T J)^-1``, scaled by the
+reduced chi-square when it exceeds 1), and the parameters' change per unit shift of every COR
+(a ball lot livelier or deader than the tested balls) from the same linearisation
+(:attr:`BallFit.lot_direction`). Nothing about a bat enters. Units: SI.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from batcert.physics.balls import footprint
+from batcert.physics.balls.impact1d import body_impact, contact_time_estimate
+from batcert.physics.balls.viscoelastic import Viscoelastic, ViscoelasticMarch
+
+KINDS = ("cor", "cylinder_cor", "peak_force", "collision_time", "contact_time", "compression")
+STIFFNESS_KINDS = ("peak_force", "collision_time", "contact_time", "compression")
+MAX_RESIDUAL = 3.0  # a test missed by more than this many standard uncertainties refuses the fit
+FIT_STEPS = 150  # integration steps per contact time while fitting (COR to about 3e-6)
+# plausible ranges: a fit at their edge is refused (the data do not hold the parameter)
+BOUNDS = {"exponent": (1.0, 3.0), "relaxed_fraction": (0.01, 0.99),
+          "relaxation_time": (1e-6, 0.1), "stiffness": (1e3, 1e13)}
+PARAMETERS = ("stiffness", "exponent", "relaxed_fraction", "relaxation_time")
+
+
+class FitError(ValueError):
+    """The tests cannot give a trustworthy law; ``test`` is the index of the test at fault
+    (None when the fit as a whole is), so that the message can point at its line."""
+
+    def __init__(self, message: str, test: int | None = None) -> None:
+        super().__init__(message)
+        self.test = test
+
+
+@dataclass(frozen=True)
+class BallTest:
+    """One measured ball property (module notes for the kinds).
+
+    ``condition`` is the impact speed [m/s] (``compression``: the diametral displacement [m]);
+    ``value`` in SI ([-], [N], [s]); ``uncertainty`` its standard uncertainty, same unit;
+    ``surface_diameter`` the rigid cylinder's diameter [m] (``inf``: a flat)."""
+
+    kind: str
+    condition: float
+    value: float
+    uncertainty: float
+    surface_diameter: float = float("inf")
+
+    def __post_init__(self) -> None:
+        if self.kind not in KINDS:
+            raise ValueError(f"unknown ball test {self.kind!r} (one of {', '.join(KINDS)})")
+        if not (self.condition > 0 and self.value > 0 and self.uncertainty >= 0):
+            raise ValueError("a ball test needs a positive condition and value and an "
+                             "uncertainty >= 0")
+
+
+@dataclass(frozen=True)
+class BallFit:
+    """The fitted law and how well it reproduces the tests."""
+
+    law: Viscoelastic
+    tests: tuple[BallTest, ...]
+    model: tuple[float, ...]  # the law's value of each test (SI)
+    residuals: tuple[float, ...]  # (model - value) / uncertainty
+    chi2: float
+    dof: int
+    uncertainty: dict[str, float]  # standard uncertainty of each parameter (SI)
+    # change of the fit's coordinates (log k0, a, logit r, log tau) when every COR test moves
+    # up by one of its standard uncertainties (a livelier ball lot)
+    lot_direction: tuple[float, ...] = (0.0, 0.0, 0.0, 0.0)
+
+    def moved(self, k: float) -> Viscoelastic:
+        """The law of a ball lot whose every COR test lies ``k`` of its standard uncertainties
+        above the tested balls' (:mod:`batcert.uncertainty`), by the fit's linearisation."""
+        if k == 0.0:
+            return self.law
+        return _law(_theta(self.law) + k * np.asarray(self.lot_direction))
+
+
+def _theta(law: Viscoelastic) -> np.ndarray:
+    r = law.relaxed_fraction
+    return np.array([np.log(law.stiffness), law.exponent, np.log(r / (1 - r)),
+                     np.log(law.relaxation_time)])
+
+
+def _law(theta) -> Viscoelastic:
+    return Viscoelastic(float(np.exp(theta[0])), float(theta[1]),
+                        float(1.0 / (1.0 + np.exp(-theta[2]))), float(np.exp(theta[3])))
+
+
+def predict(laws: list[Viscoelastic], tests: tuple[BallTest, ...], mass: float, radius: float,
+            steps: int = FIT_STEPS) -> np.ndarray:
+    """Each law's value of each test, (laws, tests): the impacts of every law integrated in one
+    batch (module notes)."""
+    dynamic = [i for i, t in enumerate(tests) if t.kind != "compression"]
+    out = np.empty((len(laws), len(tests)))
+    for i, t in enumerate(tests):
+        if t.kind == "compression":
+            for j, law in enumerate(laws):
+                out[j, i] = law.quasi_static_force(0.5 * t.condition)
+    if not dynamic:
+        return out
+    speed = np.array([tests[i].condition for i in dynamic])
+    scale = np.array([footprint.stiffness_ratio(radius, 0.5 * tests[i].surface_diameter)
+                      for i in dynamic])
+    n_laws, n_dyn = len(laws), len(dynamic)
+    which = np.repeat(np.arange(n_laws), n_dyn)
+    state = ViscoelasticMarch.of(laws, [mass] * n_laws, which, np.tile(scale, n_laws))
+    # one step size for every law (the first's): the finite differences of the fit's Jacobian
+    # then see the parameters' change, not a change of the discretisation
+    times = np.tile(contact_time_estimate(speed, mass, laws[0].relaxed_stiffness * scale,
+                                          laws[0].exponent), n_laws)
+    needs_history = any(tests[i].kind == "collision_time" for i in dynamic)
+    res = body_impact(state, mass, np.tile(speed, n_laws), 0.0, times, steps=steps,
+                      history=needs_history)
+    column = {"cor": res.cor, "cylinder_cor": res.cor, "peak_force": res.peak_force,
+              "collision_time": res.collision_time, "contact_time": res.contact_time}
+    for k, i in enumerate(dynamic):
+        out[:, i] = column[tests[i].kind].reshape(n_laws, n_dyn)[:, k]
+    return out
+
+
+def test_values(law, tests: tuple[BallTest, ...], mass: float, radius: float) -> np.ndarray:
+    """What any contact law (not only a fitted one) gives for each test (SI), integrated to
+    the default accuracy: ``inspect`` sets it beside the measured values."""
+    out = np.empty(len(tests))
+    for i, t in enumerate(tests):
+        if t.kind == "compression":
+            out[i] = float(law.quasi_static_force(0.5 * t.condition))
+            continue
+        scale = footprint.stiffness_ratio(radius, 0.5 * t.surface_diameter)
+        res = law.body_impact(mass, np.array([t.condition]), 0.0, scale=scale,
+                              history=t.kind == "collision_time")
+        out[i] = {"cor": res.cor, "cylinder_cor": res.cor, "peak_force": res.peak_force,
+                  "collision_time": res.collision_time,
+                  "contact_time": res.contact_time}[t.kind][0]
+    return out
+
+
+def _start(tests: tuple[BallTest, ...], mass: float) -> list[np.ndarray]:
+    """Starting points read off the data: the exponent from how the times fall with speed
+    (an elastic power-law spring's contact time goes as ``v^(-(a-1)/(a+1))``), the stiffness
+    from a time, a force or the compression, a few relaxation times around a fifth of a
+    contact time."""
+    times = sorted((t.condition, t.value) for t in tests
+                   if t.kind in ("collision_time", "contact_time"))
+    a = 1.8
+    if len(times) >= 2 and times[-1][0] > times[0][0]:
+        slope = -np.log(times[-1][1] / times[0][1]) / np.log(times[-1][0] / times[0][0])
+        a = float(np.clip((1 + slope) / (1 - slope), 1.2, 2.6)) if slope < 0.9 else 2.6
+    k = 6.5e7  # a baseball's order (Nathan 2000's k1)
+    t_scale = 1e-3
+    if times:
+        v, t = times[len(times) // 2]
+        t = t / 0.85 if any(x.kind == "collision_time" for x in tests) else t
+        # contact_time_estimate = 3 u_m / v = t  ->  u_m = t v / 3  ->  k
+        um = t * v / 3.0
+        k = (1 + a) * mass * v**2 / (2.0 * um ** (1 + a))
+        t_scale = t
+    else:
+        comp = [x for x in tests if x.kind == "compression"]
+        forces = [x for x in tests if x.kind == "peak_force"]
+        if comp:
+            k = comp[0].value / (0.5 * comp[0].condition) ** a / 0.4
+        elif forces:
+            v, f = forces[0].condition, forces[0].value
+            um = ((1 + a) * mass * v**2 / 2.0 / f) ** 1.0  # F u_m ~ (1+a) E for a power law
+            k = f / um**a
+    starts = []
+    for tau_frac in (0.2, 0.05, 0.6):
+        for r in (0.4, 0.15):
+            law = Viscoelastic(k * (1.6 if r == 0.4 else 2.5), a, r, tau_frac * t_scale)
+            starts.append(_theta(law))
+    return starts
+
+
+def _solve(tests: tuple[BallTest, ...], mass: float, radius: float):
+    """The least-squares solution (module notes): ``(theta, residuals, jacobian)``; FitError
+    when no start converges."""
+    from scipy.optimize import least_squares  # lazy: only a fit needs it
+
+    value = np.array([t.value for t in tests])
+    sigma = np.array([t.uncertainty for t in tests])
+
+    def residuals_of(thetas) -> np.ndarray:
+        laws = [_law(th) for th in thetas]
+        return (predict(laws, tests, mass, radius) - value) / sigma
+
+    def fun(theta):
+        return residuals_of([theta])[0]
+
+    def jac(theta):
+        steps = np.array([1e-3, 1e-3, 1e-3, 1e-3])
+        shifted = [theta] + [theta + np.eye(4)[i] * steps[i] for i in range(4)]
+        r = residuals_of(shifted)
+        return ((r[1:] - r[0]) / steps[:, None]).T
+
+    lower = np.array([np.log(BOUNDS["stiffness"][0]), BOUNDS["exponent"][0],
+                      _logit(BOUNDS["relaxed_fraction"][0]), np.log(BOUNDS["relaxation_time"][0])])
+    upper = np.array([np.log(BOUNDS["stiffness"][1]), BOUNDS["exponent"][1],
+                      _logit(BOUNDS["relaxed_fraction"][1]), np.log(BOUNDS["relaxation_time"][1])])
+    best = None
+    for start in _start(tests, mass):
+        start = np.clip(start, lower + 1e-6, upper - 1e-6)
+        try:
+            res = least_squares(fun, start, jac=jac, bounds=(lower, upper), x_scale="jac",
+                                xtol=1e-10, ftol=1e-10, max_nfev=60)
+        except (ValueError, FloatingPointError):
+            continue
+        if best is None or res.cost < best.cost:
+            best = res
+        if best.cost <= 0.5 * max(len(tests) - len(PARAMETERS), 1):  # chi2/dof <= 1: good
+            break
+    if best is None:
+        raise FitError("the fit of the viscoelastic ball to its tests did not converge")
+    return best.x, fun(best.x), jac(best.x)
+
+
+def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: float
+             ) -> BallFit:
+    """Fit the viscoelastic law to ``tests`` of a ball of ``mass`` [kg] and ``radius`` [m]
+    (module notes); :class:`FitError` when the result cannot be trusted."""
+    tests = tuple(tests)
+    kinds = {t.kind for t in tests}
+    if len(tests) < len(PARAMETERS):
+        raise FitError(f"the viscoelastic ball has {len(PARAMETERS)} parameters and the file "
+                       f"gives {len(tests)} ball tests: give at least {len(PARAMETERS)} (COR at "
+                       "several speeds and a contact time, peak force or compression)")
+    if not kinds & {"cor", "cylinder_cor"} or not kinds & set(STIFFNESS_KINDS):
+        raise FitError("the viscoelastic ball needs the COR at two or more speeds and at least "
+                       "one test that measures its stiffness (collision_time, contact_time, "
+                       "peak_force or compression)")
+    value = np.array([t.value for t in tests])
+    sigma = np.array([t.uncertainty for t in tests])
+    if not np.all(sigma > 0):
+        raise FitError("every ball test of a fit needs its standard uncertainty",
+                       int(np.argmin(sigma > 0)))
+
+    theta, r, jm = _solve(tests, mass, radius)
+    law = _law(theta)
+    dof = len(tests) - len(PARAMETERS)
+    chi2 = float(r @ r)
+    jtj = jm.T @ jm
+    if np.linalg.cond(jtj) > 1e12:
+        raise FitError("the ball tests do not determine the viscoelastic law's four parameters "
+                       "(the fit is singular): add a test of another kind or speed (COR at a "
+                       "third speed, a contact or collision time, a peak force, a compression)")
+    cov = np.linalg.inv(jtj) * max(1.0, chi2 / dof if dof > 0 else 1.0)
+    at_edge = _at_bounds(law)
+    if at_edge:
+        raise FitError(f"the fit puts the viscoelastic ball's {at_edge} at the edge of its "
+                       "plausible range: the tests do not hold it (or are not of one ball)")
+    if np.max(np.abs(r)) > MAX_RESIDUAL:
+        worst, miss, model_value = _blame(tests, mass, radius, r)
+        raise FitError(f"the viscoelastic law fitted to the other tests misses this one by "
+                       f"{miss:+.1f} standard uncertainties (model "
+                       f"{_show(tests[worst], model_value)} against "
+                       f"{_show(tests[worst], value[worst])}): the tests are not of one ball, or "
+                       "an uncertainty is too small", worst)
+    # parameter uncertainties, in SI (through the transforms)
+    su = np.sqrt(np.diag(cov))
+    rf = law.relaxed_fraction
+    uncertainty = {"stiffness": law.stiffness * su[0], "exponent": su[1],
+                   "relaxed_fraction": rf * (1 - rf) * su[2],
+                   "relaxation_time": law.relaxation_time * su[3]}
+    # a lot whose every COR test is one standard uncertainty higher: those residuals fall by 1
+    dr = np.array([-1.0 if t.kind in ("cor", "cylinder_cor") else 0.0 for t in tests])
+    direction = tuple(float(x) for x in -np.linalg.solve(jtj, jm.T @ dr))
+    model = value + r * sigma
+    return BallFit(law, tests, tuple(float(x) for x in model), tuple(float(x) for x in r), chi2,
+                   dof, uncertainty, direction)
+
+
+def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarray
+           ) -> tuple[int, float, float]:
+    """The test at fault in a refused fit, ``(index, miss, model value)``: the one without
+    which the others fit best (the smallest chi-square of the fit to the rest), its miss being
+    how far that fit is from it, in its standard uncertainties. Where the rest fit equally well
+    (with as many tests as parameters they fit exactly), the one missed by most in the standard
+    uncertainty of the miss (its own and the prediction's: its externally studentised residual,
+    so that a test the others hardly constrain is not blamed for their extrapolation). A test
+    without which the rest cannot be fitted (too few, or no COR or stiffness-bearing test left)
+    is not a candidate; with no candidate, the full fit's largest residual."""
+    k = int(np.argmax(np.abs(r)))
+    best = (k, float(r[k]), tests[k].value + float(r[k]) * tests[k].uncertainty)
+    score = np.inf
+    for i, test in enumerate(tests):
+        rest = tests[:i] + tests[i + 1:]
+        kinds = {t.kind for t in rest}
+        if (len(rest) < len(PARAMETERS) or not kinds & {"cor", "cylinder_cor"}
+                or not kinds & set(STIFFNESS_KINDS)):
+            continue
+        try:
+            theta, r_rest, jm = _solve(rest, mass, radius)
+            cov = np.linalg.inv(jm.T @ jm)
+        except (FitError, np.linalg.LinAlgError):
+            continue
+        steps = 1e-3 * np.eye(len(PARAMETERS))
+        values = [float(test_values(_law(th), (test,), mass, radius)[0])
+                  for th in (theta, *(theta + d for d in steps))]
+        gradient = (np.array(values[1:]) - values[0]) / 1e-3
+        spread = np.sqrt(test.uncertainty**2 + max(float(gradient @ cov @ gradient), 0.0))
+        studentised = (values[0] - test.value) / spread
+        rest_chi2 = round(float(r_rest @ r_rest), 3)  # ties: the rest fit exactly
+        if rest_chi2 - 1e-6 * studentised**2 < score:
+            score = rest_chi2 - 1e-6 * studentised**2
+            best = (i, (values[0] - test.value) / test.uncertainty, values[0])
+    return best
+
+
+_FITS: dict[tuple, BallFit] = {}
+
+
+def cached_fit(tests: tuple[BallTest, ...], mass: float, radius: float) -> BallFit:
+    """:func:`fit_ball`, kept in the process and in the store installed for ``"ball-fit"``
+    (:mod:`batcert.physics.stores`): a fit takes about a second, a ball file is read by
+    every run."""
+    from batcert.physics import stores
+
+    key = (tuple(tests), float(mass), float(radius))
+    hit = _FITS.get(key)
+    if hit is not None:
+        return hit
+
+    def to_arrays(f: BallFit) -> dict:
+        return {"law": np.array([getattr(f.law, p) for p in PARAMETERS]), "model": np.array(f.model),
+                "residuals": np.array(f.residuals), "chi2": np.array([f.chi2, f.dof]),
+                "uncertainty": np.array([f.uncertainty[p] for p in PARAMETERS]),
+                "direction": np.array(f.lot_direction)}
+
+    def from_arrays(a: dict | None) -> BallFit | None:
+        if a is None or len(a.get("model", ())) != len(tests):
+            return None
+        if "law" not in a:
+            return None
+        law = Viscoelastic(*(float(x) for x in a["law"]))
+        return BallFit(law, tuple(tests), tuple(float(x) for x in a["model"]),
+                       tuple(float(x) for x in a["residuals"]), float(a["chi2"][0]),
+                       int(a["chi2"][1]), dict(zip(PARAMETERS, (float(x) for x in a["uncertainty"]),
+                                                   strict=True)),
+                       tuple(float(x) for x in a["direction"]))
+
+    fit = stores.kept("ball-fit", key, lambda: fit_ball(tests, mass, radius), to_arrays,
+                      from_arrays)
+    assert fit is not None
+    _FITS[key] = fit
+    return fit
+
+
+def _logit(p: float) -> float:
+    return float(np.log(p / (1 - p)))
+
+
+def _at_bounds(law: Viscoelastic) -> str | None:
+    for name in ("exponent", "relaxed_fraction", "relaxation_time", "stiffness"):
+        lo, hi = BOUNDS[name]
+        x = getattr(law, name)
+        if name in ("relaxation_time", "stiffness"):
+            near = np.log(x / lo) < 1e-3 or np.log(hi / x) < 1e-3
+        else:
+            near = x - lo < 1e-4 * (hi - lo) or hi - x < 1e-4 * (hi - lo)
+        if near:
+            return name.replace("_", " ")
+    return None
+
+
+def _show(test: BallTest, x: float) -> str:
+    unit = {"cor": "", "cylinder_cor": "", "peak_force": " N", "collision_time": " s",
+            "contact_time": " s", "compression": " N"}[test.kind]
+    return f"{x:.4g}{unit}"

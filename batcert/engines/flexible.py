@@ -1,16 +1,19 @@
-"""Flexible impact engine: the ball's hysteresis contact against a vibrating bat, batched.
+"""Flexible impact engine: the ball's contact law against a vibrating bat, batched.
 
 Model (Nathan 2000; DESIGN.md Sec. 4). ``x`` runs along the impact normal, positive the way
 the bat's impact point moves; the pitched ball comes the other way (``v_p < 0``). The bat is its
 mass-normalised modes (:mod:`batcert.physics.modes`), rigid first, then bending modes
 ``q_j'' + 2 zeta omega_j q_j' + omega_j^2 q_j = -phi_j(z) F`` (``zeta = loss_factor / 2``; rigid
 modes undamped); the ball obeys ``m x'' = +F``. The compression ``u = y(z) - x`` (bat surface
-minus ball displacement, positive = compressed) gives ``F`` by :func:`contact.contact_force`. The
-ball's loss follows its own deformation (``ball_loss="compression"``, default): ``e0`` is the
+minus ball displacement, positive = compressed) gives ``F`` by the ball's contact law
+(:mod:`batcert.physics.balls`): the viscoelastic law, whose loss follows the rate of the
+squeeze, or Nathan's hysteresis, whose ``e0`` is (``ball_loss="compression"``, default) the
 ball's rigid-wall COR at the wall speed that compresses it as far as it has been compressed so
-far (:func:`contact.compression_restitution`), so a ball that meets a recoiling bat or a
-compliant barrel, and compresses less, loses less; ``"relative-speed"`` takes
-``e0 = ball.cor(w1 r - v_p)`` per impact (batcert 0.1).
+far, or (``"relative-speed"``, batcert 0.1) at ``w1 r - v_p``. Either way a ball that meets a
+recoiling bat or a compliant barrel, and compresses less or more slowly, loses less. A law's
+stiffness refers to a flat rigid wall; the barrel is a convex cylinder, whose contact is softer
+by Hertz's factor (:func:`~batcert.physics.balls.footprint.stiffness_ratio`, 0.84 for a
+2 5/8 in barrel; ``contact_surface="flat"`` leaves it out, as Nathan 2000 did).
 
 Before impact the bat rotates about the pivot at ``w1`` (``support="free"``: the pivot is the
 instantaneous centre of the free bat, carried by its translation and rotation modes; nothing
@@ -35,10 +38,11 @@ Integration: all impacts of the batch advance together, arrays shaped (impacts, 
 linear dynamics are propagated exactly; only the contact force is approximated, by the
 exponential Runge-Kutta scheme ETDRK4 (Cox & Matthews, J. Comput. Phys. 176 (2002) 430,
 Eqs. 26-29) in complex modal coordinates ``Z = p - conj(lambda) q``, ``Z' = lambda Z - g F``.
-Stiff modes cost nothing in stability: the step only resolves the contact pulse. The defaults
-(20 us for a solid bat, 12.5 us for a hollow one, whose contact force has sharper kinks; Nathan
-used RK4 at 5 us) keep exit speeds within 0.01 % of the converged engine (module constants). An impact ends at
-separation (``u <= 0`` after maximum compression); the exit speed is the ball's velocity then,
+Stiff modes cost nothing in stability: the step only resolves the contact pulse. The default
+(12.5 us; Nathan used RK4 at 5 us) keeps exit speeds within 0.01 % of the converged engine
+(module constants). An impact ends at separation (the ball law's contact measure falls to zero:
+``u = 0`` for Nathan's law, the force itself for the viscoelastic one, while the ball is still
+compressed); the exit speed is the ball's velocity then,
 ``w2`` and the COR come from momentum balance (:func:`rigid.momentum_outcome`: Smith 2001
 Eqs. 1 and 3 for a pinned bat; for a free bat its angular velocity about the CG and the impact
 point's speed after impact), the rigid-body equivalent of what the vibrating bat did.
@@ -46,29 +50,43 @@ point's speed after impact), the rigid-body equivalent of what the vibrating bat
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 
 from batcert.engines.base import ImpactBatch, ImpactOutcome
-from batcert.physics import contact, rigid, stores
+from batcert.physics import rigid, stores
 from batcert.physics.ball import BallModel
+from batcert.physics.balls import footprint
+from batcert.physics.balls.hysteresis import PowerLawHysteresis, compression_cor
+from batcert.physics.balls.impact1d import wall_mean_compression
 from batcert.physics.batmodel import BatModel
-from batcert.physics.march import LinearSystem, Separation, march, stack_systems
+from batcert.physics.coupling import Coupling
+from batcert.physics.linear_system import LinearSystem, stack_systems
+from batcert.physics.march import Separation, march
 from batcert.physics.modes import Modes
 
 SUPPORTS = ("pinned", "free")
-# Accuracy-driven defaults: every exit speed of the shipped bats under the shipped protocols
-# within 0.01 % of the converged engine (48 modes, 2.5 us, shell modes to 16 kHz), half the
-# 0.02 % an exit speed needs (measured: solid 4.7e-5 at 20 us, hollow 2.4e-5 at 12.5 us with
-# shell modes to 10 kHz; tests/engines/test_convergence.py). A hollow barrel's contact force
-# has sharper kinks, hence its shorter step (20 us: 1.3e-4); shell modes to 8 kHz would leave
-# 2e-4. Exception: aluminium-34's wall thinned to 1.8 mm leaves 1.4e-4 on a stationary-bat
-# exit speed, from the 10 kHz shell cut, within 0.02 % but not 0.01 % (docs/validation.md).
+# the largest barrel deflection, in wall thicknesses, for which the linear wall is taken to hold:
+# membrane stretching stiffens a plate by some 5-10 % at half its thickness (von Karman plate
+# theory; Timoshenko & Woinowsky-Krieger, Theory of plates and shells, 1959, Sec. 96-97), and
+# the runner warns beyond it (docs/physics.md)
+LINEAR_WALL = 0.5
+# Accuracy-driven defaults: every exit speed and result of the shipped bats under the shipped
+# protocols within 0.01 % of the converged engine (48 modes, 2.5 us, shell modes to 16 kHz),
+# half the 0.02 % an exit speed needs (measured with the shipped viscoelastic ball: solid
+# 7.7e-5, hollow 6.5e-5 at 12.5 us with shell modes to 10 kHz; tests/engines/
+# test_convergence.py). The viscoelastic ball's force falls through zero at separation and its
+# sweet spot is flat: a 20 us step (batcert 0.2's for a solid bat with Nathan's law) leaves
+# 4.4e-4 on a solid bat's BPF at its sweet spot, so both kinds of bat take 12.5 us; shell modes
+# to 8 kHz would leave 2e-4. Exception: aluminium-34's wall thinned to 1.8 mm leaves 1.7e-4,
+# 1.3e-4 of it from the 10 kHz shell cut, within 0.02 % but not 0.01 % (docs/validation.md).
 DEFAULT_MODES = 16
-SOLID_STEP, HOLLOW_STEP = 20e-6, 12.5e-6  # [s]
+SOLID_STEP, HOLLOW_STEP = 12.5e-6, 12.5e-6  # [s]
 DEFAULT_SHELL_FREQUENCY = 10_000.0  # [Hz]
 BALL_LOSS = ("compression", "relative-speed")
+CONTACT_SURFACES = ("cylinder", "flat")
+
 _PIVOT_CLEARANCE = 1e-3  # an impact closer than this to the pivot is refused [m]
 _BEAM_CACHE: stores.Memo[tuple, tuple] = stores.Memo(256)  # (modes, result): FlexibleEngine._beam_at
 # impacts solved together at most (FlexibleEngine.solve_many): memory bounded whatever the
@@ -88,6 +106,49 @@ def rigid_mode_velocities(modes: Modes, pivot: float) -> np.ndarray:
     return sol
 
 
+@dataclass(frozen=True)
+class Patch:
+    """Where the ball presses on the bat at each of ``p`` impacts (:mod:`~batcert.physics.
+    balls.footprint`): Hertz's elliptical footprint of the ball on the barrel. Along the bat
+    the force is spread with the parabolic weight of Hertz's pressure over ``2 a``, at the
+    compression ``u_rep`` that the ball has on average (weighted by the force) against a rigid
+    body of the impact's effective mass; around a hollow barrel over the arc ``2 b(u)``.
+
+    The footprint's size along the bat changes the exit speed by at most about 1e-3 between
+    its smallest and largest extent during an impact (docs/validation.md), so it is held at
+    ``u_rep``; around the barrel it changes the shell modes' coupling by tens of per cent."""
+
+    points: np.ndarray  # axial sample points [m from knob], (p, K)
+    weights: np.ndarray  # their weights, each row summing to 1, (p, K)
+    radius: np.ndarray  # the bat's outer radius at each impact [m], (p,)
+    surface: np.ndarray  # the contact surface's radius (inf: flat) [m], (p,)
+    scale: np.ndarray  # the ball law's stiffness factor on that surface [-], (p,)
+    compression: np.ndarray  # u_rep [m], (p,)
+    ball_radius: float  # [m]
+
+    def half_angle(self, compression) -> np.ndarray:
+        """Half-angle [rad] of the footprint around the barrel at ``compression`` [m]:
+        ``b(u) / R``, at most pi/2 (on a flat surface: Hertz's circle of the same size)."""
+        u = np.asarray(compression, dtype=float)
+        extra = (1,) * (u.ndim - 1)  # (p, grid): every impact's grid of compressions
+        _, around = footprint.ellipse(self.ball_radius, self.surface.reshape(-1, *extra), u)
+        return np.minimum(around / self.radius.reshape(-1, *extra), 0.5 * np.pi)
+
+
+def _mean_compression(ball: BallModel, speed, recoil, scale) -> np.ndarray:
+    """Where the footprint along the bat is taken [m], (n,): the impulse-weighted mean
+    compression of the ball fired at a rigid flat wall at ``v / sqrt((1 + k) gamma)``, the
+    speed at which the wall squeezes it as the impact's rigid body of effective-mass ratio
+    ``k`` and surface factor ``gamma`` does (the same for a rate-free elastic law: the same
+    ``mu v^2 / (gamma k0)``), integrated for the distinct speeds
+    (:func:`~batcert.physics.balls.impact1d.wall_mean_compression`)."""
+    equal = np.asarray(speed, float) / np.sqrt((1.0 + np.asarray(recoil, float))
+                                               * np.asarray(scale, float))
+    unique, which = np.unique(equal, return_inverse=True)
+    u = wall_mean_compression([(ball.law, float(ball.mass))], np.zeros(unique.size, int), unique)
+    return u[np.asarray(which).ravel()]
+
+
 class FlexibleEngine:
     """Batched flexible-bat impact engine (Nathan 2000 model; module notes).
 
@@ -97,13 +158,18 @@ class FlexibleEngine:
         Bending modes kept [-] (Nathan used up to 18); the rest are residual compliance.
     time_step : float or None
         Integration step [s]; only the contact pulse has to be resolved (module notes). None:
-        20 us for a solid bat, 12.5 us for a hollow one (module constants).
+        12.5 us for a solid and a hollow bat alike (module constants).
     refine : int
         Beam elements per bat slice for the modes [-].
     residual : bool
         Keep the truncated modes' quasi-static compliance as a series spring (module notes).
     ball_loss : {"compression", "relative-speed"}
-        How the contact law's ``e0`` is chosen (module notes).
+        How Nathan's hysteresis law chooses its ``e0`` (module notes); the viscoelastic law's
+        loss follows from the squeeze itself.
+    contact_surface : {"cylinder", "flat"}
+        The ball meets the bat's round surface (its law's stiffness times Hertz's cylinder
+        factor, :func:`~batcert.physics.balls.footprint.stiffness_ratio`) or, as in Nathan
+        2000, a flat one.
     shell_max_frequency : float
         Hollow bats: shell modes up to this frequency [Hz] join the engine; the rest is
         quasi-static residual compliance.
@@ -111,13 +177,14 @@ class FlexibleEngine:
         Safety cap on the integration [s]; impacts still in contact then are reported with
         ``diagnostics["separated"] = False``.
     contact_patch : bool
-        Spread the contact force along the bat over the ball's flattened contact length
-        ``2 a``, ``a = sqrt(2 R u_m - u_m^2)`` with ``u_m`` the ball's maximum compression against
-        a rigid wall at the impact's relative speed, with a semicircular (Hertz-like) weight,
-        centred on the impact point (shrunk near the bat's ends so it stays on the bat).
-        False: a point force at the impact location (Nathan 2000).
+        Spread the contact force over the ball's footprint (:class:`Patch`): along the bat
+        over ``2 a``, Hertz's footprint on the barrel at the compression ``u_rep`` the ball
+        has on average (weighted by the force) against a rigid body of the impact's effective
+        mass, with the parabolic weight of Hertz's pressure, centred on the impact point (shrunk
+        near the bat's ends so it stays on the bat); around a hollow barrel over Hertz's
+        ``2 b``. False: a point force along the bat (Nathan 2000).
     patch_points : int
-        Sample points across the patch (Gauss-Chebyshev of the second kind).
+        Sample points along the patch (Gauss-Jacobi for the parabolic weight).
     record_states : bool
         Add the state at separation to the diagnostics (energy checks): ``modal_velocity`` of
         every beam mode [sqrt(kg) m/s], ``bending_displacement`` [sqrt(kg) m],
@@ -131,13 +198,18 @@ class FlexibleEngine:
                  refine: int = 1, residual: bool = True, ball_loss: str = "compression",
                  shell_max_frequency: float = DEFAULT_SHELL_FREQUENCY,
                  max_contact_time: float = 0.02, record_states: bool = False,
-                 contact_patch: bool = True, patch_points: int = 15) -> None:
+                 contact_patch: bool = True, patch_points: int = 15,
+                 contact_surface: str = "cylinder") -> None:
         if n_modes < 1 or int(n_modes) != n_modes:
             raise ValueError(f"n_modes must be a positive integer, got {n_modes!r}")
         if time_step is not None and not 0 < time_step <= 1e-4:
             raise ValueError(f"time_step must lie in (0, 1e-4] s, got {time_step!r}")
         if ball_loss not in BALL_LOSS:
             raise ValueError(f"ball_loss must be one of {BALL_LOSS}, got {ball_loss!r}")
+        if contact_surface not in CONTACT_SURFACES:
+            raise ValueError(f"contact_surface must be one of {CONTACT_SURFACES}, got "
+                             f"{contact_surface!r}")
+        self.contact_surface = contact_surface
         self.n_modes, self.refine = int(n_modes), int(refine)
         self.time_step = None if time_step is None else float(time_step)
         self.residual, self.ball_loss = bool(residual), ball_loss
@@ -163,33 +235,50 @@ class FlexibleEngine:
                 "refine": self.refine, "residual_compliance": self.residual,
                 "max_contact_time": self.max_contact_time,
                 "integrator": "ETDRK4 (Cox & Matthews 2002), exact modal propagation",
-                "contact": "Nathan 2000 power-law hysteresis, " + (
-                    "e0 = ball COR at the rigid-wall speed of equal compression"
-                    if self.ball_loss == "compression" else "e0 = ball COR at relative speed"),
+                "contact": "the ball's law (viscoelastic, or Nathan 2000 hysteresis with " + (
+                    "e0 = ball COR at the rigid-wall speed of equal compression)"
+                    if self.ball_loss == "compression" else "e0 = ball COR at relative speed)"),
+                "contact_surface": ("the barrel's cylinder (Hertz's stiffness factor)"
+                                    if self.contact_surface == "cylinder" else "flat"),
                 "barrel": f"shell of revolution (Sanders), orders 0 and 2+; modes up to "
                           f"{self.shell_max_frequency:g} Hz, the rest quasi-static",
                 "damping": "zeta = material loss factor / 2 on every flexible mode",
-                "contact_patch": (f"force spread over the ball's flattened contact length "
-                                  f"({self.patch_points} points, semicircular weight)"
-                                  if self.contact_patch else "point force")}
+                "contact_patch": (f"force spread over Hertz's footprint ({self.patch_points} "
+                                  "points along the bat, parabolic weight)"
+                                  if self.contact_patch else "point force along the bat")}
 
-    def _patch(self, bat: BatModel, ball: BallModel, z: np.ndarray, speed: np.ndarray):
-        """Sample points (p, K) [m from knob] and weights (p, K) of the contact force along
-        the bat, and the half-length of the contact (around the bat) [m], (p,)."""
-        u = np.minimum(contact.max_compression(speed, ball.mass, ball.k1, ball.alpha), ball.radius)
-        contact_half = np.sqrt(2.0 * ball.radius * u - u**2)  # around the bat too
+    def _surface(self, bat: BatModel, ball: BallModel, z: np.ndarray):
+        """The bat's outer radius at each impact [m], the contact surface's radius (inf: flat)
+        and the ball law's stiffness factor on it [-]."""
+        edges = np.asarray(bat.z_edges, dtype=float)
+        s = np.clip(np.searchsorted(edges, z, side="right") - 1, 0, edges.size - 2)
+        radius = 0.5 * np.asarray(bat.outer_diameter, dtype=float)[s]
+        surface = radius if self.contact_surface == "cylinder" else np.full(z.size, np.inf)
+        scale = np.asarray(footprint.stiffness_ratio(ball.radius, surface), dtype=float)
+        return radius, surface, np.broadcast_to(scale, z.shape).copy()
+
+    def _patch(self, bat: BatModel, ball: BallModel, z: np.ndarray, speed: np.ndarray,
+               recoil: np.ndarray, compression: np.ndarray | None = None) -> Patch:
+        """Each impact's :class:`Patch` (the class notes; ``recoil``: the bat's effective-mass
+        ratio ``k`` at each impact; ``compression``: ``u_rep`` when already known)."""
+        edges = np.asarray(bat.z_edges, dtype=float)
+        radius, surface, scale = self._surface(bat, ball, z)
+        u_rep = (_mean_compression(ball, speed, recoil, scale) if compression is None
+                 else np.asarray(compression, dtype=float))
+        along, _ = footprint.ellipse(ball.radius, surface, u_rep)
         if not self.contact_patch:
-            return z[:, None], np.ones((z.size, 1)), contact_half
+            return Patch(z[:, None], np.ones((z.size, 1)), radius, surface, scale, u_rep,
+                         ball.radius)
         # keep the patch centred on the impact point: shrink it near the bat's ends
-        half = np.minimum(contact_half, np.minimum(z - bat.z_edges[0], bat.z_edges[-1] - z))
-        k = np.arange(1, self.patch_points + 1)
-        xi = np.cos(k * np.pi / (self.patch_points + 1))
-        w = np.sin(k * np.pi / (self.patch_points + 1)) ** 2
+        half = np.minimum(along, np.minimum(z - edges[0], edges[-1] - z))
+        xi, w = footprint.axial_weights(self.patch_points)
         points = z[:, None] + half[:, None] * xi[None, :]
-        return points, np.broadcast_to(w / w.sum(), points.shape), contact_half
+        return Patch(points, np.broadcast_to(w, points.shape), radius, surface, scale, u_rep,
+                     ball.radius)
 
     def linear_system(self, bat: BatModel, ball: BallModel, pivot: float, batch: ImpactBatch,
-                      support: str = "pinned", modes: Modes | None = None):
+                      support: str = "pinned", modes: Modes | None = None,
+                      compression: np.ndarray | None = None):
         """Check the batch and build each impact's :class:`LinearSystem`.
 
         Returns ``(system, extras)``; ``extras`` holds what the outputs need (modes, shapes at
@@ -212,19 +301,29 @@ class FlexibleEngine:
         zeta = 0.5 * bat.material.loss_factor
         if not 0 <= zeta < 1:
             raise ValueError(f"loss factor {bat.material.loss_factor} out of range [0, 2)")
-        points, weights, half = self._patch(bat, ball, z, batch.relative_speed)
+        recoil = rigid.recoil_factor(bat, ball.mass, pivot, batch.impact_location, support)
+        patch = self._patch(bat, ball, z, batch.relative_speed, recoil, compression)
+        points, weights = patch.points, patch.weights
         phi, residual = self._beam_at(bat, modes, points, weights)
         nr = modes.n_rigid
         gain, omega = phi[:, nr:], np.broadcast_to(modes.omega[nr:], (z.size, phi.shape[1] - nr))
         rigid_mass = 1.0 / (phi[:, :nr] ** 2).sum(1)
+        edges = np.asarray(bat.z_edges, dtype=float)
+        s = np.clip(np.searchsorted(edges, z, side="right") - 1, 0, edges.size - 2)
+        wall = 0.5 * (np.asarray(bat.outer_diameter) - np.asarray(bat.inner_diameter))[s]
         extras = {"modes": modes, "phi": phi, "n_bending": omega.shape[1], "n_shell": 0,
                   "beam_rigid_mass": rigid_mass, "residual_omega": 0.0,
-                  "shell_static": np.zeros(z.size)}
-        shell = self._shell(bat, points, weights, half, extras)
-        if shell is not None:
-            gain = np.concatenate([gain, shell.gain], axis=1)
-            omega = np.concatenate([omega, np.broadcast_to(shell.omega, shell.gain.shape)], 1)
-            residual = residual + (shell.residual if self.residual else 0.0)
+                  "shell_static": np.zeros(z.size), "contact_scale": patch.scale,
+                  "patch_compression": patch.compression, "wall": wall}
+        shell = self._shell(bat, patch, extras)
+        coupling = None
+        if shell is not None:  # the shell's modes, their gains following the footprint's arc
+            bpatch, table = shell
+            gain = np.concatenate([gain, bpatch.axial], axis=1)
+            omega = np.concatenate([omega, np.broadcast_to(bpatch.omega, bpatch.axial.shape)], 1)
+            coupling = _coupling(bpatch, table, omega.shape[1], extras["n_bending"],
+                                 residual if self.residual else None, patch)
+            residual = residual + table["residual"][:, _REFERENCE] if self.residual else residual
         if self.residual:
             om_res = 2.0 * float(omega.max(initial=modes.omega[-1]))
             gain = _column(gain, om_res * np.sqrt(residual))
@@ -235,7 +334,8 @@ class FlexibleEngine:
         system = LinearSystem(omega=np.ascontiguousarray(omega), zeta=np.full(z.size, zeta),
                               gain=np.ascontiguousarray(gain), rigid_mass=rigid_mass,
                               ball_mass=np.full(z.size, ball.mass),
-                              shell_columns=shell_cols if shell is not None else None)
+                              shell_columns=shell_cols if shell is not None else None,
+                              coupling=coupling)
         return system, extras
 
     def _beam_at(self, bat: BatModel, modes: Modes, points: np.ndarray, weights: np.ndarray
@@ -259,20 +359,23 @@ class FlexibleEngine:
             residual = residual_compliance(bat, modes, points, weights, reader=reader)
         return phi, residual
 
-    def _shell(self, bat: BatModel, points, weights, half, extras: dict):
-        """A hollow bat's wall at each impact (module notes), or None for a solid bat."""
+    def _shell(self, bat: BatModel, patch: Patch, extras: dict):
+        """A hollow bat's wall under each impact's footprint (module notes) and, on the grid
+        of compressions :data:`_GRID` x ``u_rep``, the footprint's half-angle around the barrel
+        and the shell's residual compliance under it; None for a solid bat."""
         if bat.construction != "hollow":
             return None
         from batcert.physics import barrel
         modes = barrel.cached_barrel_modes(bat, self.shell_max_frequency)
         if modes is None:
             return None
-        z = points.mean(axis=1)
-        response = barrel.barrel_response(modes, points, weights,
-                                          barrel.patch_half_angle(bat, z, half))
-        extras.update(n_shell=response.omega.size, shell_static=response.static,
-                      shell_orders=response.orders)
-        return response
+        bpatch = barrel.barrel_patch(modes, patch.points, patch.weights)
+        angles = patch.half_angle(_GRID[None, :] * patch.compression[:, None])  # (p, grid)
+        factors, residual, static = bpatch.over(angles)
+        table = {"angle": angles, "factors": factors, "residual": residual}
+        extras.update(n_shell=bpatch.omega.size, shell_static=static[:, _REFERENCE],
+                      shell_orders=bpatch.mode_orders)
+        return bpatch, table
 
     def solve(self, bat: BatModel, ball: BallModel, pivot: float, batch: ImpactBatch,
               support: str = "pinned", modes: Modes | None = None) -> ImpactOutcome:
@@ -302,8 +405,11 @@ class FlexibleEngine:
             ``m v_rel^2 / (2 (1 + k))``, the kinetic energy of the approach in the impact's
             frame, of which ``cor^2`` stays in the relative motion [J], ``e0`` [-] (the
             contact law's COR parameter at the end), ``separated`` [bool]; hollow bats also
-            ``barrel_energy`` left in the shell modes [J] and ``barrel_energy_share``, the
-            shell's share of the energy stored in ball and shell at the ball's maximum compression [-].
+            ``barrel_energy`` left in the shell modes [J], ``barrel_energy_share``, the
+            shell's share of the energy stored in ball and shell at the ball's maximum
+            compression [-], ``barrel_deflection``, the wall's quasi-static deflection under
+            the peak force over the footprint [m], and ``barrel_deflection_ratio``, that over
+            the wall's thickness [-] (:data:`LINEAR_WALL` is where the linear wall ends).
         """
         return self.solve_many([(bat, ball, pivot, batch, support, modes)])[0]
 
@@ -332,13 +438,15 @@ class FlexibleEngine:
         """:meth:`solve_many` of jobs of flat batches, in one pass."""
         ready: dict[int, tuple[BatModel, BallModel, float, ImpactBatch, str, LinearSystem,
                                dict]] = {}
-        for members in self._alike(jobs).values():
+        groups = list(self._alike(jobs).values())
+        compressions = self._compressions(jobs, groups)
+        for members, compression in zip(groups, compressions, strict=True):
             batches = [jobs[i][3] for i in members]
             bat, ball, pivot, _, support, *rest = jobs[members[0]]
             # the jobs of one bat, ball, pivot and support share one linear system (a bat's
             # patches and barrel are read for all their rows at once), split back per job
             system, extras = self.linear_system(bat, ball, pivot, _concatenate(batches),
-                                                support, rest[0] if rest else None)
+                                                support, rest[0] if rest else None, compression)
             start = 0
             for i, batch in zip(members, batches, strict=True):
                 a, b = start, start + batch.impact_location.size
@@ -349,14 +457,39 @@ class FlexibleEngine:
                 ready[i] = (bat, ball, pivot, batch, support, *mine)
         prepared = [ready[i] for i in range(len(jobs))]
         out: list[ImpactOutcome | None] = [None] * len(prepared)
-        steps: dict[float, list[int]] = {}
-        for i, job in enumerate(prepared):
-            steps.setdefault(self.step_for(job[0]), []).append(i)
-        for step, members in steps.items():
+        steps: dict[tuple, list[int]] = {}
+        for i, job in enumerate(prepared):  # one march per time step and ball law
+            steps.setdefault((self.step_for(job[0]), type(job[1].law)), []).append(i)
+        for (step, _), members in steps.items():
             seps = self._integrate([prepared[i] for i in members], step)
             for i, sep in zip(members, seps, strict=True):
                 out[i] = self._outcome(*prepared[i], sep)
         return out  # type: ignore[return-value]
+
+    def _compressions(self, jobs, groups: list[list[int]]) -> list[np.ndarray]:
+        """Each group's ``u_rep`` (:func:`_mean_compression`), the groups of one ball law in a
+        single integration: a Monte Carlo's draws, each a ball of its own, cost one."""
+        rows: dict[type, list] = {}  # law class -> [(group, law, mass, speeds)]
+        for g, members in enumerate(groups):
+            bat, ball, pivot, _, support, *_ = jobs[members[0]]
+            batch = _concatenate([jobs[i][3] for i in members])
+            z = pivot + batch.impact_location
+            recoil = rigid.recoil_factor(bat, ball.mass, pivot, batch.impact_location, support)
+            _, _, scale = self._surface(bat, ball, z)
+            equal = batch.relative_speed / np.sqrt((1.0 + recoil) * scale)
+            rows.setdefault(type(ball.law), []).append((g, ball.law, float(ball.mass), equal))
+        out: list[np.ndarray] = [np.empty(0)] * len(groups)
+        for parts in rows.values():
+            distinct: dict[tuple, int] = {}
+            which = np.concatenate([np.full(p[3].size, distinct.setdefault((p[1], p[2]),
+                                                                           len(distinct)))
+                                    for p in parts])
+            u = wall_mean_compression(list(distinct), which, np.concatenate([p[3] for p in parts]))
+            start = 0
+            for g, _, _, equal in parts:
+                out[g] = u[start:start + equal.size]
+                start += equal.size
+        return out
 
     @staticmethod
     def _alike(jobs) -> dict[tuple, list[int]]:
@@ -368,38 +501,29 @@ class FlexibleEngine:
         return groups
 
     def _integrate(self, jobs: list, step: float) -> list[Separation]:
-        """One march over the stacked rows of ``jobs`` (prepared as in :meth:`solve_many`);
-        each job's :class:`Separation`, its modal columns unpadded."""
+        """One march over the stacked rows of ``jobs`` (prepared as in :meth:`solve_many`; their
+        balls share one contact law); each job's :class:`Separation`, its modal columns
+        unpadded."""
         stacked, columns = stack_systems([j[5] for j in jobs])
         sizes = [j[3].impact_location.size for j in jobs]
         bounds = np.concatenate([[0], np.cumsum(sizes)])
-        balls = [j[1] for j in jobs]
-        per_row = [np.repeat([getattr(b, a) for b in balls], sizes) for a in ("k1", "alpha")]
         relative = np.concatenate([j[3].relative_speed for j in jobs])
-        restitution: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
-        if self.ball_loss == "compression":
-            laws, owner = _laws(balls, sizes)
-
-            def by_ball(u_top, rows):
-                beta = np.empty(rows.size)
-                for k, law in enumerate(laws):
-                    mine = owner[rows] == k
-                    if mine.any():
-                        beta[mine] = law(u_top[mine], rows[mine])
-                return beta
-            restitution = laws[0] if len(laws) == 1 else by_ball
-            beta = by_ball(np.full(bounds[-1], 1e-12), np.arange(bounds[-1]))
-        else:
-            beta = np.concatenate([contact.restitution_exponent(b.alpha, b.cor(j[3].relative_speed))
-                                   for b, j in zip(balls, jobs, strict=True)])
-        sep = march(stacked, per_row[0], per_row[1], beta, relative, step,
-                    self.max_contact_time, restitution)
+        scale = np.concatenate([j[6]["contact_scale"] for j in jobs])
+        distinct: dict[BallModel, int] = {}
+        for j in jobs:
+            distinct.setdefault(j[1], len(distinct))
+        balls = list(distinct)
+        which = np.repeat([distinct[j[1]] for j in jobs], sizes)
+        state = type(balls[0].law).state_of([b.law for b in balls], [b.mass for b in balls],
+                                            which, scale, self.ball_loss, relative)
+        sep = march(stacked, state, relative, step, self.max_contact_time)
         return [Separation(impulse=sep.impulse[a:b], time=sep.time[a:b],
                            separated=sep.separated[a:b], peak_force=sep.peak_force[a:b],
                            max_compression=sep.max_compression[a:b],
                            modal=sep.modal[a:b][:, cols],
                            barrel_share=None if jobs[k][5].shell_columns is None
-                           or sep.barrel_share is None else sep.barrel_share[a:b])
+                           or sep.barrel_share is None else sep.barrel_share[a:b],
+                           absorbed=None if sep.absorbed is None else sep.absorbed[a:b])
                 for k, (a, b, cols) in enumerate(zip(bounds[:-1], bounds[1:], columns,
                                                       strict=True))]
 
@@ -408,9 +532,6 @@ class FlexibleEngine:
                  sep: Separation) -> ImpactOutcome:
         """Exit speed, momentum outcome and diagnostics of one job from its separation state."""
         r, vp, w1 = batch.impact_location, batch.pitch_speed, batch.bat_angular_speed
-        e0 = (contact.compression_cor(ball, sep.max_compression)
-              if self.ball_loss == "compression"
-              else np.asarray(ball.cor(batch.relative_speed), dtype=float))
         vb = vp + sep.impulse / ball.mass
         k = rigid.recoil_factor(bat, ball.mass, pivot, r, support)
         w2, cor = rigid.momentum_outcome(bat, ball.mass, pivot, support, r, vp, w1, vb, k)
@@ -419,23 +540,71 @@ class FlexibleEngine:
         q = sep.modal.imag / (om * np.sqrt(1 - zeta**2))
         p = sep.modal.real - zeta * om * q
         energy = 0.5 * (p**2 + (om * q) ** 2)
-        stored = ball.k1 * sep.max_compression ** (1 + ball.alpha) / (1 + ball.alpha)
         diag = {"contact_time": sep.time, "peak_force": sep.peak_force,
-                "max_compression": sep.max_compression,
-                "vibrational_energy": energy.sum(1), "ball_energy_loss": stored * (1 - e0**2),
+                "max_compression": sep.max_compression, "vibrational_energy": energy.sum(1),
                 "approach_energy": 0.5 * ball.mass / (1 + k) * batch.relative_speed**2,
-                "e0": e0, "separated": sep.separated}
+                "separated": sep.separated}
+        law = ball.law
+        if isinstance(law, PowerLawHysteresis):  # the energy in closed form, and e0
+            k1 = law.k1 * extras["contact_scale"]
+            e0 = (compression_cor(law, ball.mass, sep.max_compression, k1)
+                  if self.ball_loss == "compression"
+                  else np.asarray(law.cor_at(batch.relative_speed), dtype=float))
+            stored = k1 * sep.max_compression ** (1 + law.alpha) / (1 + law.alpha)
+            diag.update(ball_energy_loss=stored * (1 - e0**2), e0=e0)
+        else:
+            diag["ball_energy_loss"] = sep.absorbed
         if system.shell_columns is not None:
             diag["barrel_energy"] = energy[:, system.shell_columns].sum(1)
             diag["barrel_energy_share"] = sep.barrel_share
+            # the wall's quasi-static deflection under the peak force: the linear wall's limit
+            deflection = extras["shell_static"] * sep.peak_force
+            diag["barrel_deflection"] = deflection
+            diag["barrel_deflection_ratio"] = deflection / extras["wall"]
         if self.record_states:
             diag.update(_states(system, extras, sep, q, p, pivot, w1 * r, w1))
         return ImpactOutcome(exit_speed=vb, bat_angular_speed_after=w2, cor=cor, recoil_factor=k,
                              diagnostics=diag)
 
 
+# the compressions, in multiples of u_rep, at which a hollow barrel's coupling to the ball is
+# tabulated (linear between them, held beyond); _REFERENCE is u_rep itself
+_GRID = np.linspace(0.0, 2.0, 41)
+_REFERENCE = 20
+
+
+def _coupling(bpatch, table: dict, columns: int, n_bending: int, beam_residual, patch: Patch
+              ) -> Coupling:
+    """The groups of a hollow bat's columns whose gains follow the footprint
+    (:mod:`batcert.physics.coupling`): the beam's modes (fixed), the shell's modes order by
+    order (factor ``c_n(beta(u))`` of the arc around the barrel; their gains are the axial
+    averages, ``c_n = 1``), and the residual pseudo-mode (the square root of the total
+    residual compliance at ``u`` over that at ``u_rep``, where its gain is taken)."""
+    orders = [int(n) for n in bpatch.mode_orders]
+    labels: list = ["beam"]
+    starts = [0]
+    for i, n in enumerate(orders):
+        if i == 0 or n != orders[i - 1]:
+            labels.append(("shell", n))
+            starts.append(n_bending + i)
+    p, points = table["angle"].shape
+    factors = [np.ones((p, points))]
+    order_row = {n: i for i, n in enumerate(bpatch.orders)}
+    for label in labels[1:]:
+        factors.append(table["factors"][order_row[label[1]]])
+    if beam_residual is not None:
+        labels.append("residual")
+        starts.append(columns)
+        total = beam_residual[:, None] + table["residual"]
+        factors.append(np.sqrt(total / total[:, _REFERENCE:_REFERENCE + 1]))
+        columns += 1
+    spacing = np.maximum(patch.compression, 1e-9) * (_GRID[1] - _GRID[0])
+    return Coupling(tuple(labels), (*starts, columns), np.stack(factors, axis=1), spacing)
+
+
 # the entries of linear_system's extras that hold one row per impact
-_ROW_EXTRAS = ("phi", "beam_rigid_mass", "shell_static")
+_ROW_EXTRAS = ("phi", "beam_rigid_mass", "shell_static", "contact_scale", "patch_compression",
+               "wall")
 
 
 def _flat(batch: ImpactBatch) -> ImpactBatch:
@@ -484,42 +653,6 @@ def _concatenate(batches: list[ImpactBatch]) -> ImpactBatch:
         return batches[0]
     return ImpactBatch(*(np.concatenate([getattr(b, a) for b in batches]) for a in (
         "impact_location", "pitch_speed", "bat_angular_speed")))
-
-
-def _laws(balls: list[BallModel], sizes: list[int]) -> tuple[list, np.ndarray]:
-    """The restitution laws of the jobs' balls and the law of each row: one law per distinct
-    ball (a run's jobs usually share one), and one vectorised law for the balls that share a
-    contact law and COR speeds but differ in mass or COR (the samples of a ball lot)."""
-    families: dict[tuple, dict[BallModel, int]] = {}
-    for b in balls:
-        families.setdefault((b.k1, b.alpha, b.cor_speeds), {}).setdefault(b, 0)
-    laws: list = []
-    law_of: dict[BallModel, tuple[int, int | None]] = {}
-    for (k1, alpha, speeds), members in families.items():
-        if len(members) == 1:
-            (b,) = members
-            law_of[b] = (len(laws), None)
-            laws.append(contact.compression_restitution(b))
-            continue
-        family = list(members)
-        for i, b in enumerate(family):
-            law_of[b] = (len(laws), i)
-        laws.append((family, k1, alpha, speeds))
-    owner = np.repeat([law_of[b][0] for b in balls], sizes)
-    member = np.repeat([-1 if law_of[b][1] is None else law_of[b][1] for b in balls], sizes)
-    out = []
-    for law in laws:
-        if callable(law):
-            out.append(law)
-            continue
-        family, k1, alpha, speeds = law
-        rows = owner == len(out)
-        mass = np.zeros(owner.size)
-        values = np.ones((owner.size, len(speeds)))
-        mass[rows] = np.array([b.mass for b in family])[member[rows]]
-        values[rows] = np.array([b.cor_values for b in family], dtype=float)[member[rows]]
-        out.append(contact.compression_restitution_rows(k1, alpha, speeds, mass, values))
-    return out, owner
 
 
 def _check_batch(bat: BatModel, pivot: float, batch: ImpactBatch, support: str) -> None:

@@ -7,19 +7,25 @@ import numpy as np
 from batcert.engines.base import ImpactBatch, ImpactOutcome
 from batcert.physics import rigid
 from batcert.physics.ball import BallModel
+from batcert.physics.balls import footprint
 from batcert.physics.batmodel import BatModel
 
 BALL_LOSS = ("compression", "relative-speed")
+CONTACT_SURFACES = ("cylinder", "flat")
 
 
 class RigidEngine:
-    """Closed-form rigid-bat engine: exact and instant; the stiff limit of the flexible engine.
+    """Rigid-bat engine: Smith 2001's closed forms with the ball's COR against a rigid body;
+    the stiff limit of the flexible engine.
 
-    The ball-bat COR is the ball's rigid-wall COR at the wall speed that compresses the ball as
-    far as this impact does, ``v_rel / sqrt(1 + k)`` for a rigid bat of recoil factor ``k``
-    (``ball_loss="compression"``, as the flexible engine; :mod:`batcert.physics.contact`), or at
-    the relative speed itself (``"relative-speed"``). ``support="pinned"`` uses k = m r^2 / I
-    about the pivot; ``"free"`` the free-bat k.
+    The ball-bat COR is the ball's against a rigid body of the bat's effective mass at the
+    impact point (recoil factor ``k``; ``support="pinned"`` uses k = m r^2 / I about the pivot,
+    ``"free"`` the free-bat k): for Nathan's hysteresis its rigid-wall COR at the wall speed that
+    compresses the ball as far as this impact does, ``v_rel / sqrt(1 + k)``
+    (``ball_loss="compression"``, as the flexible engine), or at the relative speed itself
+    (``"relative-speed"``); for the viscoelastic ball the integrated impact
+    (:mod:`batcert.physics.balls.impact1d`, on the bat's round surface unless
+    ``contact_surface="flat"``, as the flexible engine).
     """
 
     name = "rigid"
@@ -27,15 +33,22 @@ class RigidEngine:
                           "reflects the ball's lower loss when it compresses less against a "
                           "recoiling bat; use the flexible engine for a meaningful BPF"}
 
-    def __init__(self, ball_loss: str = "compression") -> None:
+    def __init__(self, ball_loss: str = "compression", contact_surface: str = "cylinder") -> None:
         if ball_loss not in BALL_LOSS:
             raise ValueError(f"ball_loss must be one of {BALL_LOSS}, got {ball_loss!r}")
-        self.ball_loss = ball_loss
+        if contact_surface not in CONTACT_SURFACES:
+            raise ValueError(f"contact_surface must be one of {CONTACT_SURFACES}, got "
+                             f"{contact_surface!r}")
+        self.ball_loss, self.contact_surface = ball_loss, contact_surface
 
     def settings(self, bat: BatModel | None = None) -> dict:
         return {"engine": "rigid", "cor": (
-            "ball rigid-wall COR at the wall speed of equal compression, v_rel / sqrt(1 + k)"
-            if self.ball_loss == "compression" else "ball rigid-wall COR at the relative speed")}
+            "the ball's COR against a rigid body of the bat's effective mass (Nathan 2000 "
+            "hysteresis: its rigid-wall COR at " + (
+                "the wall speed of equal compression, v_rel / sqrt(1 + k))"
+                if self.ball_loss == "compression" else "the relative speed)")),
+            "contact_surface": ("the barrel's cylinder (Hertz's stiffness factor)"
+                                if self.contact_surface == "cylinder" else "flat")}
 
     def solve_many(self, jobs: list[tuple]) -> list[ImpactOutcome]:
         """Closed forms cost nothing per call: :meth:`solve` for each job."""
@@ -45,10 +58,26 @@ class RigidEngine:
               support: str = "pinned") -> ImpactOutcome:
         r, vp, w1 = batch.impact_location, batch.pitch_speed, batch.bat_angular_speed
         k = rigid.recoil_factor(bat, ball.mass, pivot, r, support)
-        speed = batch.relative_speed
-        if self.ball_loss == "compression":
-            speed = speed / np.sqrt(1.0 + k)
-        e = ball.cor(speed)
+        scale: float | np.ndarray = 1.0
+        if self.contact_surface == "cylinder":
+            edges = np.asarray(bat.z_edges, dtype=float)
+            s = np.clip(np.searchsorted(edges, r + pivot, side="right") - 1, 0, edges.size - 2)
+            scale = footprint.stiffness_ratio(ball.radius, 0.5 * bat.outer_diameter[s])
+        e = _body_cor(ball, batch.relative_speed, k, scale, self.ball_loss)
         vb = rigid.exit_speed(e, k, vp, w1 * r)
         w2, cor = rigid.momentum_outcome(bat, ball.mass, pivot, support, r, vp, w1, vb, k)
         return ImpactOutcome(exit_speed=vb, bat_angular_speed_after=w2, cor=cor, recoil_factor=k)
+
+
+def _body_cor(ball: BallModel, speed, recoil, scale, rule: str) -> np.ndarray:
+    """The ball's COR against rigid bodies, computed once per distinct impact (a sweep's
+    conditions repeat speeds and recoil factors)."""
+    speed, recoil = np.broadcast_arrays(np.asarray(speed, float), np.asarray(recoil, float))
+    scale = np.broadcast_to(np.asarray(scale, float), speed.shape)
+    if hasattr(ball.law, "cor_at"):  # Nathan's law: closed form, the surface does not matter
+        return ball.law.body_cor(ball.mass, speed, recoil, rule)
+    key = np.stack([speed.ravel(), recoil.ravel(), scale.ravel()], axis=1)
+    unique, which = np.unique(key, axis=0, return_inverse=True)
+    cor = ball.law.body_impact(ball.mass, unique[:, 0], unique[:, 1], history=False,
+                               scale=unique[:, 2]).cor
+    return cor[np.asarray(which).ravel()].reshape(speed.shape)

@@ -10,10 +10,11 @@ circumferential orders: ``n = 1`` moves each cross-section as a whole and is the
 ``n >= 2`` (ovalling and higher). These are orthogonal to the beam's motion, so the two add
 without counting any mass twice.
 
-The ball presses on a patch: along the bat the same semicircular weight over ``2 a`` as the
-beam's contact patch, around it the same weight over the arc ``2 a`` of the outer surface
-(half-angle ``beta = a / R_outer``). Order ``n`` feels the load through the factor
-``c_n = 2 J_1(n beta) / (n beta)`` (:func:`~batcert.physics.shell.circumferential_factor`).
+The ball presses on a patch (:mod:`batcert.physics.balls.footprint`): along the bat the
+parabolic weight over ``2 a`` of the beam's contact patch, around it the same weight over the
+arc ``2 b`` of the outer surface (half-angle ``beta = b / R_outer``). Order ``n`` feels the
+load through the factor ``c_n = 3 j_1(n beta) / (n beta)``
+(:func:`~batcert.physics.balls.footprint.circumferential_factor`).
 
 What the engine uses per impact (:func:`barrel_response`): the modes of orders
 ``0, 2 .. dynamic_orders`` below ``max_frequency`` as extra modes of the bat (gain
@@ -35,6 +36,7 @@ from functools import cached_property, lru_cache
 import numpy as np
 
 from batcert.physics import stores
+from batcert.physics.balls.footprint import circumferential_factors
 from batcert.physics.banded import inverse_band, lower_band
 from batcert.physics.batmodel import BatModel
 from batcert.physics.shell import (
@@ -42,7 +44,6 @@ from batcert.physics.shell import (
     HarmonicSystem,
     ShellOfRevolution,
     assemble,
-    circumferential_factor,
     harmonic_modes,
     normal_reader,
     normal_weights,
@@ -419,9 +420,52 @@ class BarrelResponse:
     orders: np.ndarray  # order n of each kept mode, (m,)
 
 
-def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray,
-                    half_angle: np.ndarray) -> BarrelResponse:
-    """Modal gains and residual compliance for patch loads.
+@dataclass(frozen=True)
+class BarrelPatch:
+    """The barrel under each of ``p`` patches of given axial extent, for any extent around the
+    barrel: the kept modes' axial patch averages and each order's patch flexibility, from which
+    :meth:`at` forms the response to a load spread over a half-angle ``beta``."""
+
+    omega: np.ndarray  # kept modes [rad/s], (m,)
+    axial: np.ndarray  # sum_k weights W_j(points): each mode over each patch [1/sqrt(kg)], (p, m)
+    flexibility: np.ndarray  # f^T K_n^-1 f of each order over each patch [m/N], (orders, p)
+    orders: tuple[int, ...]  # the orders of ``flexibility``: 0, 2 .. STATIC_ORDERS
+    mode_orders: np.ndarray  # order n of each kept mode, (m,)
+
+    def factors(self, half_angle) -> np.ndarray:
+        """:func:`~batcert.physics.balls.footprint.circumferential_factor` of every order at
+        each patch's ``half_angle`` [rad], (orders, p)."""
+        beta = np.broadcast_to(np.asarray(half_angle, dtype=float), (self.axial.shape[0],))
+        angles, which = np.unique(beta, return_inverse=True)  # often one patch size
+        return _factors(self.orders, angles)[:, which.ravel()]
+
+    def over(self, half_angle: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`at` for a grid of half-angles per patch, ``half_angle`` (p, g) [rad]: every
+        order's factor (orders, p, g), the residual compliance (p, g) and the static
+        compliance (p, g) [m/N]."""
+        c = circumferential_factors(self.orders, half_angle)
+        static = np.einsum("npg,np->pg", c**2, self.flexibility)
+        order_row = {n: i for i, n in enumerate(self.orders)}
+        mode_c = c[[order_row[n] for n in self.mode_orders]]  # (m, p, g)
+        modal = np.einsum("mpg,pm->pg", mode_c**2, (self.axial / self.omega) ** 2)
+        return c, np.clip(static - modal, 0.0, None), static
+
+    def at(self, half_angle) -> BarrelResponse:
+        """The response to loads spread around the barrel over ``+-half_angle`` [rad], (p,):
+        ``gain[i, j] = c_n(beta_i) axial[i, j]``; ``static`` is ``sum_n c_n^2 flexibility_n``
+        over the orders 0, 2..STATIC_ORDERS; ``residual`` is ``static`` minus the kept modes'
+        ``sum (gain / omega)^2``."""
+        c = self.factors(half_angle)
+        static = (c**2 * self.flexibility).sum(axis=0)
+        order_row = {n: i for i, n in enumerate(self.orders)}
+        gain = c[[order_row[n] for n in self.mode_orders]].T * self.axial
+        modal = (gain**2 / self.omega**2).sum(axis=1)
+        return BarrelResponse(self.omega, gain, np.clip(static - modal, 0.0, None), static,
+                              self.mode_orders)
+
+
+def barrel_patch(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray) -> BarrelPatch:
+    """The barrel under patch loads of the given axial extent (:class:`BarrelPatch`).
 
     Parameters
     ----------
@@ -431,37 +475,27 @@ def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray
         Axial sample points of each impact's patch [m from knob], shape (p, K).
     weights : numpy.ndarray
         Their weights, each row summing to 1, shape (p, K).
-    half_angle : numpy.ndarray
-        Circumferential half-angle of each patch [rad], shape (p,).
-
-    Returns
-    -------
-    BarrelResponse
-        ``gain[i, j] = c_n(beta_i) sum_k weights[i, k] W_j(points[i, k])``; ``static`` is
-        ``sum_n c_n^2 f^T K_n^-1 f`` over the orders 0, 2..STATIC_ORDERS with ``f`` the
-        consistent load of the axial patch (:func:`_patch_flexibility`); ``residual`` is
-        ``static`` minus the kept modes' ``sum (gain / omega)^2``.
     """
     loads = _w_load(barrel.shell, points, weights)
-    angles, which = np.unique(half_angle, return_inverse=True)  # often one patch size
-    c = _factors(barrel.orders, angles)[:, which.ravel()]  # (orders, p)
-    static = barrel.green_scale * (c**2 * _patch_flexibility(barrel.green, loads)).sum(axis=0)
-    order_row = {n: i for i, n in enumerate(barrel.orders)}
-    factor = c[[order_row[n] for n in barrel.mode_orders]].T  # (p, m)
+    flexibility = barrel.green_scale * _patch_flexibility(barrel.green, loads)
     shapes = np.empty((loads.f.shape[0], barrel.shapes.shape[1]))  # W_j over each patch
     width = loads.f.shape[1]
     for s0, rows in loads.by_start:
         shapes[rows] = loads.f[rows] @ barrel.shapes[s0:s0 + width]
-    gain = factor * shapes
-    modal = (gain**2 / barrel.omega**2).sum(axis=1)
-    return BarrelResponse(barrel.omega, gain, np.clip(static - modal, 0.0, None), static,
-                          barrel.mode_orders)
+    return BarrelPatch(barrel.omega, shapes, flexibility, barrel.orders, barrel.mode_orders)
+
+
+def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray,
+                    half_angle: np.ndarray) -> BarrelResponse:
+    """Modal gains and residual compliance for patch loads: :func:`barrel_patch` at
+    ``half_angle`` [rad], (p,), the circumferential half-angle of each patch."""
+    return barrel_patch(barrel, points, weights).at(half_angle)
 
 
 def _factors(orders: tuple[int, ...], angles: np.ndarray) -> np.ndarray:
-    """:func:`~batcert.physics.shell.circumferential_factor` of every order at every angle,
-    (orders, angles), read-only; memoised (at most ``stores.MEMO_ROWS`` angles): a barrel's
-    variants and the runner's repeated points ask for the same patch sizes."""
+    """:func:`~batcert.physics.balls.footprint.circumferential_factor` of every order at every
+    angle, (orders, angles), read-only; memoised (at most ``stores.MEMO_ROWS`` angles): a
+    barrel's variants and the runner's repeated points ask for the same patch sizes."""
     key = angles.astype(float).tobytes()
     if angles.size > stores.MEMO_ROWS:
         return _factors_of.__wrapped__(orders, key)  # computed alike, not kept
@@ -470,7 +504,7 @@ def _factors(orders: tuple[int, ...], angles: np.ndarray) -> np.ndarray:
 
 @lru_cache(maxsize=64)
 def _factors_of(orders: tuple[int, ...], angles: bytes) -> np.ndarray:
-    c = circumferential_factor(np.asarray(orders)[:, None], np.frombuffer(angles)[None, :])
+    c = circumferential_factors(orders, np.frombuffer(angles))
     c.setflags(write=False)
     return c
 

@@ -34,35 +34,48 @@ FRAME_GROWTH = 50.0
 class RowByRow:
     """Each row's own propagator ``e1`` (n, K), read-out ``R`` (n, 4, 2K) and forcing ``B``
     (n, 3, 2K) of ``Y`` (``R`` and ``B`` on ``Y`` as floats): the free ``y`` after h/2 and h,
-    ``y'`` and ``y`` now; the change of ``Y`` per (F0, Fa + Fb, Fc)."""
+    ``y'`` and ``y`` now; the change of ``Y`` per (F0, Fa + Fb, Fc).
+
+    With groups of columns whose coupling follows the ball (:mod:`batcert.physics.coupling`;
+    ``starts``, their first float columns): the forces come per group, ``f[:, s G + g]``, and
+    the read-out goes out per group, ``out[:, r G + g]``."""
 
     e1: np.ndarray
     R: np.ndarray
     B: np.ndarray
+    starts: np.ndarray | None = None
 
     def advance(self, z: np.ndarray, f: np.ndarray) -> np.ndarray:
         """Advance ``z`` (``Y``, (n, K) complex) by one step in place under the forces ``f``
-        (n, 3); return the read-out of the new ``Y``, (n, 4)."""
+        (n, 3 G); return the read-out of the new ``Y``, (n, 4 G)."""
         z *= self.e1
         y = z.view(float)
-        y += np.matmul(f[:, None, :], self.B)[:, 0, :]
-        return np.matmul(self.R, y[:, :, None])[:, :, 0]
+        if self.starts is None:
+            y += np.matmul(f[:, None, :], self.B)[:, 0, :]
+            return np.matmul(self.R, y[:, :, None])[:, :, 0]
+        n, width = y.shape
+        groups = self.starts.size
+        member = np.repeat(np.arange(groups), np.diff(np.append(self.starts, width)))
+        forcing = f.reshape(n, 3, groups)[:, :, member]  # each column's group's forces
+        y += (forcing * self.B).sum(axis=1)
+        out = np.add.reduceat(self.R * y[:, None, :], self.starts, axis=2)  # (n, 4, G)
+        return out.reshape(n, 4 * groups)
 
     def current(self, z: np.ndarray, rows: np.ndarray) -> np.ndarray:
         """``Y`` of ``rows`` (indices or a mask): the state itself."""
         return z[rows]
 
     def take(self, keep: np.ndarray) -> RowByRow:
-        return RowByRow(self.e1[keep], self.R[keep], self.B[keep])
+        return RowByRow(self.e1[keep], self.R[keep], self.B[keep], self.starts)
 
 
 @dataclass
 class SharedRuns:
     """:class:`RowByRow` for runs of rows that share their modes (one bat each): one
-    propagator ``e1`` (runs, K), read-out ``R`` (runs, 2K, 4) and forcing ``P`` (runs, 3, 2K)
-    per run, applied with one matrix product per piece of a run's rows (at most about
-    ``PIECE_ENTRIES`` impact-mode entries); the forcing scaled per row by ``scale`` = ``c_y g``
-    (n, 2K).
+    propagator ``e1`` (runs, K), read-out ``R`` (runs, 2K, 4 G) and forcing ``P``
+    (runs, 3 G, 2K) per run (``G`` groups of columns, 1 without a coupling), applied with one
+    matrix product per piece of a run's rows (at most about ``PIECE_ENTRIES`` impact-mode
+    entries); the forcing scaled per row by ``scale`` = ``c_y g`` (n, 2K).
 
     Each run's state is kept in a frame that turns with its free modes (:class:`Turns`):
     ``z`` holds ``X = Y / e1^k``, ``k`` steps after the run's state was last folded back to
@@ -101,7 +114,7 @@ class SharedRuns:
             y += push
             out = y @ turns.R[k[g], g]
         else:
-            out = np.empty((y.shape[0], 4))
+            out = np.empty((y.shape[0], turns.R.shape[-1]))
             for a, b, g in self.pieces:
                 push = f[a:b] @ turns.P[k[g], g]
                 push *= self.scale[a:b]

@@ -418,48 +418,6 @@ def normal_weights(shell: ShellOfRevolution, z: np.ndarray) -> tuple[np.ndarray,
     return e, h
 
 
-def circumferential_factor(n, half_angle) -> np.ndarray:
-    """``c_n = int w(theta) cos(n theta) dtheta`` for a normal load spread around the
-    circumference with the semicircular (Hertz-like) weight ``w`` of half-angle ``beta``
-    [rad], normalised to unit resultant: ``2 J_1(n beta) / (n beta)`` (1 at ``n = 0``).
-    ``n`` and ``half_angle`` broadcast against each other."""
-    x = n * np.asarray(half_angle, dtype=float)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(x > 1e-8, 2 * bessel_j1(x) / np.where(x > 1e-8, x, 1.0), 1.0)
-
-
-def bessel_j1(x) -> np.ndarray:
-    """The Bessel function ``J_1(x)``, pure numpy, so that a barrel's response needs no scipy.
-
-    Miller's backward recurrence ``J_(k-1) = (2k / x) J_k - J_(k+1)`` from an order ``N``
-    well above ``|x|`` (``N >= |x| + 16 + 4 sqrt|x|``, where the neglected ``J_N`` is below
-    rounding) down to 0, normalised by ``J_0 + 2 sum J_2k = 1`` (Abramowitz & Stegun 9.1.46,
-    9.12); rescaled on the way where the unnormalised values grow large. A series for
-    ``|x| < 1e-4``. Accurate to a few ulps of 1 (tested against scipy.special.j1 up to 100).
-    """
-    x = np.asarray(x, dtype=float)
-    ax = np.abs(x)
-    top = float(ax.max(initial=0.0))
-    order = 2 * (int(top + 16 + 4 * np.sqrt(top)) // 2 + 1)  # even
-    arg = np.where(ax > 1e-4, ax, 1.0)
-    above, here = np.zeros_like(ax), np.full_like(ax, 1e-300)  # J_(k+1), J_k unnormalised
-    total, j1 = np.zeros_like(ax), np.zeros_like(ax)
-    for k in range(order, 0, -1):
-        here, above = (2 * k / arg) * here - above, here  # J_(k-1)
-        if k == 2:
-            j1 = here.copy()
-        elif k % 2 and k > 1:
-            total += 2 * here  # J_2, J_4 ..
-        if k % 4 == 0:  # four steps grow at most (2 order / 1e-4)^4 < 1e100
-            large = np.abs(here) > 1e200
-            if large.any():
-                scale = np.where(large, 1e-200, 1.0)
-                here, above, total, j1 = here * scale, above * scale, total * scale, j1 * scale
-    total += here  # J_0
-    small = ax / 2 - ax**3 / 16  # J_1 to rounding below 1e-4
-    return np.sign(x) * np.where(ax > 1e-4, j1 / total, small)
-
-
 def ring_frequency(mean_radius, wall, youngs_modulus, density, poisson_ratio, n: int = 2):
     """Inextensional thin-ring frequency of order ``n`` [Hz] (Love 1927; Soedel 2004):
     ``omega = (t / R^2) sqrt(E' / (12 rho)) n (n^2 - 1) / sqrt(n^2 + 1)``, ``E' = E/(1-nu^2)``:

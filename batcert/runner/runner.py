@@ -74,10 +74,14 @@ class Request:
         job = (b.built.model, b.ball.model, b.pivot, self.batch, b.support)
         return job if b.modes is None else (*job, b.modes)
 
-    def finish(self, out: ImpactOutcome) -> tuple[ImpactMetrics, dict[str, np.ndarray]]:
+    def finish(self, out: ImpactOutcome, ball_cor: np.ndarray | None = None
+               ) -> tuple[ImpactMetrics, dict[str, np.ndarray]]:
+        """The metrics of the solved batch; ``ball_cor``: the ball's rigid-wall COR at each
+        impact's relative speed when already known (:func:`_ball_cors`)."""
         batch, ball = self.batch, self.bench.ball.model
+        cor_at = ball.cor if ball_cor is None else (lambda _: ball_cor)
         m = impact_metrics(batch.impact_location, batch.pitch_speed, batch.bat_angular_speed,
-                           out.exit_speed, out.bat_angular_speed_after, out.cor, ball.cor,
+                           out.exit_speed, out.bat_angular_speed_after, out.cor, cor_at,
                            out.recoil_factor)
         diag = {k: np.asarray(v).reshape(self.shape) for k, v in out.diagnostics.items()}
         return m.reshape(self.shape), diag
@@ -110,8 +114,9 @@ def drive(runs: list[Steps], engine: Engine,
             on_step(step, len(pending), sum(req.batch.impact_location.size for _, req in order))
         outcomes = engine.solve_many([req.job() for _, req in order])
         answers: dict[int, list[Solved]] = {i: [] for i in pending}
-        for (i, req), out in zip(order, outcomes, strict=True):
-            answers[i].append(req.finish(out))
+        cors = _ball_cors([req for _, req in order])
+        for (i, req), out, cor in zip(order, outcomes, cors, strict=True):
+            answers[i].append(req.finish(out, cor))
         for i in list(pending):
             try:
                 pending[i] = runs[i].send(answers[i])
@@ -119,6 +124,42 @@ def drive(runs: list[Steps], engine: Engine,
                 values[i] = stop.value
                 del pending[i]
     return values
+
+
+def _ball_cors(requests: list[Request]) -> list[np.ndarray | None]:
+    """The balls' rigid-wall COR at each request's relative speeds, where a step has many
+    balls whose COR is integrated (the drawn balls of a Monte Carlo, each a law of its own):
+    one batched integration (:func:`~batcert.physics.balls.impact1d.wall_cors`) instead of a
+    table per ball; None where a ball's own ``cor`` serves (few balls: its cached table; a
+    closed form)."""
+    from batcert.physics.balls.impact1d import MANY_BALLS, wall_cors
+
+    out: list[np.ndarray | None] = [None] * len(requests)
+    integrated = [k for k, req in enumerate(requests)
+                  if not hasattr(req.bench.ball.model.law, "cor_at")]
+    distinct: dict[tuple, int] = {}
+    for k in integrated:
+        ball = requests[k].bench.ball.model
+        distinct.setdefault((ball.law, float(ball.mass)), len(distinct))
+    if len(distinct) <= MANY_BALLS:
+        return out
+    for law_class in {type(law) for law, _ in distinct}:
+        members = [k for k in integrated
+                   if type(requests[k].bench.ball.model.law) is law_class]
+        balls = [key for key in distinct if type(key[0]) is law_class]
+        index = {key: j for j, key in enumerate(balls)}
+        speeds = [np.abs(requests[k].batch.relative_speed) for k in members]
+        which = np.concatenate([np.full(v.size, index[(requests[k].bench.ball.model.law,
+                                                        float(requests[k].bench.ball.model.mass))])
+                                for k, v in zip(members, speeds, strict=True)])
+        unique, inverse = np.unique(np.stack([which, np.concatenate(speeds)], axis=1), axis=0,
+                                    return_inverse=True)
+        cor = wall_cors(balls, unique[:, 0].astype(int), unique[:, 1])[np.asarray(inverse).ravel()]
+        start = 0
+        for k, v in zip(members, speeds, strict=True):
+            out[k] = cor[start:start + v.size]
+            start += v.size
+    return out
 
 
 def check_applicable(protocol: ProtocolSpec, built: BuiltBat) -> None:
@@ -294,7 +335,8 @@ def protocol_steps(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engi
         conditions=_condition_results(conds, choice, search, final, diag, values, mp,
                                       ball.model.mass),
         inputs=inputs, batcert_version=__version__, created=created,
-        warnings=_warnings(p, conds, choice, engine) + _barrel_warning(barrel, metric.display),
+        warnings=(_warnings(p, conds, choice, engine) + _barrel_warning(barrel, metric.display)
+                  + _wall_warning(conds, diag)),
         extras=bat_dynamics(built, p.pivot), barrel=barrel)
 
 
@@ -310,6 +352,27 @@ def _final_steps(bench: Bench, conds: list[Condition], locations: np.ndarray, me
     except StopIteration as stop:
         return answers[0], stop.value
     raise RuntimeError("the barrel range asked for more than one step")
+
+
+def _wall_warning(conds: list[Condition], diag: dict[str, np.ndarray]) -> list[str]:
+    """A hollow bat whose wall the model bends beyond where a linear wall holds
+    (:data:`batcert.engines.flexible.LINEAR_WALL` thicknesses under the peak force)."""
+    from batcert.engines.flexible import LINEAR_WALL
+
+    ratio = diag.get("barrel_deflection_ratio")
+    if ratio is None:
+        return []
+    out = []
+    for i, c in enumerate(conds):
+        r = float(np.asarray(ratio)[i, 0])
+        if np.isfinite(r) and r > LINEAR_WALL:
+            mm = float(np.asarray(diag["barrel_deflection"])[i, 0]) * 1e3
+            out.append(f"{c.name}: the barrel's wall deflects about {mm:.1f} mm under the peak "
+                       f"force, {r:.1f} times its thickness; the model's wall is linear "
+                       "elastic, and at such a deflection a real wall stiffens (membrane "
+                       "stretching) and may dent, both of which the model leaves out and both "
+                       "of which lower the result (docs/physics.md)")
+    return out
 
 
 def _barrel_warning(barrel: BarrelRange | None, metric: str) -> list[str]:

@@ -22,8 +22,9 @@ from batcert.engines import ImpactBatch, get_engine
 from batcert.engines.flexible import DEFAULT_MODES, FlexibleEngine, rigid_mode_velocities
 from batcert.engines.rigid import RigidEngine
 from batcert.model.geometry import build_geometry
-from batcert.physics import barrel, contact
+from batcert.physics import barrel, rigid
 from batcert.physics.ball import BallModel
+from batcert.physics.balls import PowerLawHysteresis, Viscoelastic
 from batcert.physics.batmodel import Material
 from batcert.physics.modes import Modes, cached_modes
 from batcert.physics.residual import residual_compliance
@@ -33,9 +34,11 @@ from r161 import r161_bat  # noqa: E402
 
 PIVOT = 0.1524  # 6 in [m]
 # a spec-like ball: COR falling with speed (REFERENCE-DATA.md: 0.64 at 1 m/s, ~0.55 at 25.9 m/s)
-BALL = BallModel("test-ball", 0.145, 0.0366, cor_speeds=(1.0, 25.9, 60.0),
-                 cor_values=(0.64, 0.55, 0.50))
-LOSSLESS = dataclasses.replace(BALL, cor_speeds=(1.0,), cor_values=(1.0,))
+BALL = BallModel("test-ball", 0.145, 0.0366,
+                 PowerLawHysteresis(6.53e7, 1.84, (1.0, 25.9, 60.0), (0.64, 0.55, 0.50)))
+LOSSLESS = dataclasses.replace(BALL, law=PowerLawHysteresis(6.53e7, 1.84, (1.0,), (1.0,)))
+# a viscoelastic ball of the shipped collegiate ball's order (its fit, rounded)
+VISCO = BallModel("test-visco", 0.145, 0.0369, Viscoelastic(5.7e7, 1.68, 0.37, 155e-6))
 AL7050 = Material("aluminium-7050", 2830.0, 71.7e9, 26.9e9, 0.33)  # REFERENCE-DATA.md (H)
 BARREL_D = 2.625 * 0.0254  # [m]
 GAME = (-31.3, 50.0)  # 70 mph pitch, swing [m/s, rad/s]
@@ -64,74 +67,129 @@ def solve(bat, z, speeds, support="pinned", ball=BALL, pivot=PIVOT, **options):
 
 def reference_impact(bat, ball, pivot, support, z, pitch_speed, bat_angular_speed, modes,
                      residual=True, rtol=1e-10, atol=1e-12, patch=True, shell=True,
-                     ball_loss="compression"):
+                     ball_loss="compression", **options):
     """One impact integrated with solve_ivp (DOP853) in modal coordinates.
 
     State: every beam modal displacement and velocity (rigid modes included), for a hollow bat
-    every kept shell mode (gains from :func:`barrel.barrel_response`, the model's definition of
-    the barrel), the residual pseudo-mode of the engine's documented construction (beam and
-    shell residual compliance in series) and the ball. The ball presses on ``sum g_j q_j``; every
-    mode is driven by ``-g_j F``; damping ``zeta = loss_factor / 2`` on every flexible mode.
+    every kept shell mode, the residual pseudo-mode of the engine's documented construction
+    (beam and shell residual compliance in series), the ball, the compression, and a
+    viscoelastic ball's branch variable. Every mode is driven by ``-g_j(u) F`` and the
+    compression changes as ``u' = sum g_j(u) q_j' - x'`` (the footprint's growth does no work;
+    physics/march.py); damping ``zeta = loss_factor / 2`` on every flexible mode.
 
-    Contact law branches switch at events: compression ends where ``u' = 0``, restitution returns
-    to compression where ``u`` climbs back to ``u_max``, and the impact ends where ``u = 0``. The
-    ball's COR parameter: ``ball_loss="compression"``, the ball's rigid-wall COR at the wall speed
-    that compresses it to ``u_max`` (set when each compression branch ends);
-    ``"relative-speed"``, the COR at the impact's relative speed.
+    The footprint is the engine's (``FlexibleEngine._patch``, a model definition): the force
+    spread along the bat at its fixed size, and around a hollow barrel over the arc of the
+    current compression, evaluated afresh at every call (not from the engine's table): shell
+    mode ``j`` of order ``n`` has gain ``c_n(beta(u)) axial_j`` and the residual pseudo-mode
+    ``omega_res sqrt(c(u))``. The law's stiffness is scaled by the surface's factor
+    (``patch.scale``).
 
-    ``patch``: the contact force is spread over the engine's contact patch (sample points and
-    weights from ``FlexibleEngine._patch``, a model definition, not part of the integration);
-    False: a point force at ``z``. ``shell=False`` leaves a hollow bat's shell out (a guard).
+    Nathan's law: branches switch at events (compression ends where ``u' = 0``, restitution
+    returns to compression where ``u`` climbs back to ``u_max``, the impact ends where
+    ``u = 0``), ``e0`` from ``ball_loss`` as the engine. The viscoelastic law: ``F = gamma
+    (k0 x - k1 s)``, ``s' = (x - s) / tau``, the impact ending where ``F`` falls to zero.
+
+    ``patch=False``: a point force at ``z`` along the bat. ``shell=False`` leaves a hollow
+    bat's shell out (a guard). ``options``: the engine's (e.g. ``contact_surface``).
 
     Returns
     -------
     exit_speed [m/s], contact_time [s]
     """
+    from batcert.physics.balls import footprint
+    from batcert.physics.balls.hysteresis import (
+        PowerLawHysteresis,
+        compression_cor,
+        contact_force,
+        restitution_exponent,
+    )
+
     rel = np.array([bat_angular_speed * (z - pivot) - pitch_speed])
-    pts, w, half = FlexibleEngine()._patch(bat, ball, np.array([z]), rel)
-    if not patch:
-        pts, w = np.array([[z]]), np.ones((1, 1))
+    recoil = rigid.recoil_factor(bat, ball.mass, pivot, np.array([z - pivot]), support)
+    foot = FlexibleEngine(contact_patch=patch, **options)._patch(bat, ball, np.array([z]), rel,
+                                                                 recoil)
+    pts, w = foot.points, foot.weights
     nr, om = modes.n_rigid, modes.omega.copy()
     phi = (modes.at(pts.ravel()) * w.ravel()[:, None]).sum(axis=0)
-    c_res = residual_compliance(bat, modes, pts, w)[0] if residual else 0.0
+    beam_res = residual_compliance(bat, modes, pts, w)[0] if residual else 0.0
     barrel_modes = barrel.cached_barrel_modes(bat) if shell else None
+    n_beam = om.size
+    bpatch = None
     if barrel_modes is not None:
-        resp = barrel.barrel_response(barrel_modes, pts, w,
-                                      barrel.patch_half_angle(bat, np.array([z]), half))
-        phi, om = np.append(phi, resp.gain[0]), np.append(om, resp.omega)
-        c_res += resp.residual[0] if residual else 0.0
-    if residual:  # engine: omega_res = 2 max(omega), gain omega_res sqrt(residual compliance)
-        om_res = 2 * om.max()
-        phi, om = np.append(phi, om_res * np.sqrt(c_res)), np.append(om, om_res)
-    zeta = np.where(om > 0, 0.5 * bat.material.loss_factor, 0.0)
-    if ball_loss == "compression":
-        def beta_at(u_max):
-            return float(contact.compression_restitution(ball)(np.array([u_max]))[0])
-    else:
-        beta_fixed = float(contact.restitution_exponent(ball.alpha, ball.cor(rel[0])))
+        bpatch = barrel.barrel_patch(barrel_modes, pts, w)
+        phi, om = np.append(phi, bpatch.axial[0]), np.append(om, bpatch.omega)
+    om_res = 2 * om.max() if residual else 0.0
+    if residual:
+        phi, om = np.append(phi, 0.0), np.append(om, om_res)
+    orders = None if bpatch is None else np.array(bpatch.mode_orders)
 
-        def beta_at(u_max):
-            return beta_fixed
+    def gains(u):
+        g = phi.copy()
+        shell_res = 0.0
+        if bpatch is not None:
+            beta = foot.half_angle(np.array([max(u, 0.0)]))
+            g[n_beam:n_beam + orders.size] *= footprint.circumferential_factor(orders, beta[0])
+            shell_res = bpatch.at(beta).residual[0] if residual else 0.0
+        if residual:
+            g[-1] = om_res * np.sqrt(beam_res + shell_res)
+        return g
+
+    zeta = np.where(om > 0, 0.5 * bat.material.loss_factor, 0.0)
+    law = ball.law
+    gamma = float(foot.scale[0])
+    hysteresis = isinstance(law, PowerLawHysteresis)
+    if hysteresis:
+        k1 = law.k1 * gamma
+        if ball_loss == "compression":
+            def beta_at(u_max):
+                return float((1 + law.alpha) / compression_cor(law, ball.mass, u_max, k1)**2 - 1)
+        else:
+            beta_fixed = float(restitution_exponent(law.alpha, law.cor_at(rel[0])))
+
+            def beta_at(u_max):
+                return beta_fixed
     n = om.size
-    y0 = np.zeros(2 * n + 2)  # q, q', x_ball, x_ball'
+    y0 = np.zeros(2 * n + 4)  # q, q', x_ball, x_ball', s (the viscoelastic branch), u
     y0[n:n + nr] = bat_angular_speed * rigid_mode_velocities(modes, pivot)
     y0[2 * n + 1] = pitch_speed
 
     def compression(y):
-        return phi @ y[:n] - y[2 * n], phi @ y[n:2 * n] - y[2 * n + 1]
+        u = y[2 * n + 3]
+        g = gains(u)
+        return u, g @ y[n:2 * n] - y[2 * n + 1], g
+
+    def force(u, y, u_max, beta):
+        if hysteresis:
+            return contact_force(u, u_max, k1, law.alpha, beta)
+        x = max(u, 0.0) ** law.exponent
+        return max(0.0, gamma * law.stiffness * (x - (1 - law.relaxed_fraction) * y[2 * n + 2]))
 
     def rhs(t, y, u_max, beta):
-        f = contact.contact_force(compression(y)[0], u_max, ball.k1, ball.alpha, beta)
+        u, _, g = compression(y)
+        f = force(u, y, u_max, beta)
         dy = np.empty_like(y)
         dy[:n], dy[2 * n] = y[n:2 * n], y[2 * n + 1]
-        dy[n:2 * n] = -2 * zeta * om * y[n:2 * n] - om**2 * y[:n] - phi * f
+        dy[n:2 * n] = -2 * zeta * om * y[n:2 * n] - om**2 * y[:n] - g * f
         dy[2 * n + 1] = f / ball.mass
+        dy[2 * n + 2] = 0.0 if hysteresis else (max(u, 0.0) ** law.exponent - y[2 * n + 2]
+                                                ) / law.relaxation_time
+        dy[2 * n + 3] = g @ y[n:2 * n] - y[2 * n + 1]
         return dy
 
     def event(fn, direction):
         fn.terminal, fn.direction = True, direction
         return fn
 
+    if not hysteresis:
+        def ends(t_, y_, m_, b_):
+            u = compression(y_)[0]
+            x = max(u, 0.0) ** law.exponent
+            return x - (1 - law.relaxed_fraction) * y_[2 * n + 2] if t_ > 1e-7 else 1.0
+        sol = solve_ivp(rhs, (0.0, 0.02), y0, method="DOP853", rtol=rtol, atol=atol,
+                        events=[event(ends, -1)], args=(0.0, 0.0))
+        if sol.status != 1:
+            raise RuntimeError("reference integration did not separate")
+        return sol.y[2 * n + 1, -1], sol.t[-1]
     t, y, u_max, loading, beta = 0.0, y0, 0.0, True, beta_at(0.0)
     while True:
         if loading:
@@ -221,7 +279,9 @@ def test_stiff_bat_with_lossy_ball_approaches_rigid_as_one_over_stiffness(r161):
     assert np.all(excess[1e3] > 0)
     assert np.all(np.abs(excess[1e4]) < 2e-3)
     assert np.all(np.abs(excess[1e3][(z > 0.61) & (z < 0.71)]) < 2e-3)
-    big = np.abs(excess[1e3]) > 1e-3  # where the scaling is above the step's noise
+    # where the scaling is above the step's noise (about 2e-5 of the exit speed at the 10^4 x
+    # stiffer bat, measured against a 5 us step)
+    big = np.abs(excess[1e4]) > 3e-4
     np.testing.assert_allclose(excess[1e3][big] / excess[1e4][big], 10.0, rtol=0.1)
 
 
@@ -343,7 +403,8 @@ def test_solve_many_equals_separate_solves(r161, monkeypatch):
 
     # Jobs of one bat, ball, pivot and support (the first and the last two) also share one
     # linear system, split back per job; the states recorded per impact come back with them.
-    other_ball = dataclasses.replace(BALL, k1=5.0e7, alpha=1.6, mass=0.16)
+    other_ball = dataclasses.replace(
+        BALL, law=dataclasses.replace(BALL.law, k1=5.0e7, alpha=1.6), mass=0.16)
     hollow = hollow_bat(2.4e-3)
     jobs = [(r161, BALL, PIVOT, ImpactBatch(np.array([0.45, 0.55]), -60.0, 0.0), "pinned"),
             (hollow, other_ball, PIVOT,
@@ -373,13 +434,17 @@ def test_solve_many_equals_separate_solves(r161, monkeypatch):
             np.testing.assert_allclose(b.exit_speed, a.exit_speed, rtol=1e-12)
             np.testing.assert_allclose(b.cor, a.cor, rtol=1e-12)
             assert a.diagnostics.keys() == b.diagnostics.keys()
+            scale = float(np.max(a.diagnostics["approach_energy"]))
             for key, value in a.diagnostics.items():
                 # the states per mode are compared against their largest: a mode that is
-                # hardly moved carries the rounding of the large ones (4e-15 of 10 m/s)
+                # hardly moved carries the rounding of the large ones (4e-15 of 10 m/s); an
+                # energy against the impact's (the residual pseudo-mode's 3e-4 J carries the
+                # rounding of a coupled barrel's 200 J: 1.5e-15 J measured)
                 value = np.asarray(value, float)
+                floor = 1e-15 * scale if key.endswith("energy") else 0.0
                 np.testing.assert_allclose(np.asarray(b.diagnostics[key], float), value,
                                            rtol=1e-12, err_msg=key,
-                                           atol=max(1e-15, 1e-13 * np.abs(value).max()))
+                                           atol=max(1e-15, 1e-13 * np.abs(value).max(), floor))
 
 
 def test_the_memos_keep_small_batches_only(monkeypatch):
@@ -397,7 +462,9 @@ def test_the_memos_keep_small_batches_only(monkeypatch):
     large = engine.solve(bat, BALL, PIVOT, ImpactBatch(np.linspace(0.45, 0.6, 4),
                                                        np.linspace(-35.0, -45.0, 4), 50.0))
     assert not flexible_module._BEAM_CACHE and not barrel._PATCH_CACHE
-    assert barrel._factors_of.cache_info().currsize == 0
+    # only the coupling grid's first point is kept: no compression, a point footprint, one
+    # angle (0) for every impact
+    assert barrel._factors_of.cache_info().currsize <= 1
     small = ImpactBatch(np.linspace(0.45, 0.6, 3), -40.0, 50.0)
     first = engine.solve(bat, BALL, PIVOT, small)
     assert len(flexible_module._BEAM_CACHE) == 1 and len(barrel._PATCH_CACHE) == 1
@@ -478,29 +545,22 @@ def test_reference_integration_sees_the_shell():
 WALLS = np.array([1.6, 2.0, 2.4, 2.8, 3.2, 3.6, 4.0, 6.0]) * 1e-3  # barrel walls [m]
 
 
-def test_barrel_trampoline_has_an_optimum_wall():
+def test_a_thinner_wall_is_livelier_across_the_range_of_real_barrels():
     # The trampoline (DESIGN.md Sec. 1; Nathan, Russell & Smith 2004): a more compliant barrel
-    # stores more of the deformation that the lossy ball would waste, but only returns it if it
-    # springs back within the contact. Stationary bat at 60 m/s (BBCOR-style), maximum COR over
-    # the full-diameter barrel (0.56-0.855 m, 1 cm steps), walls 1.6-6 mm (hoop frequency
-    # 1.1-4.2 kHz). Measured: 0.490, 0.492, 0.519, 0.531, 0.532, 0.527, 0.521, 0.511: the gain
-    # peaks near 3 mm (2.2 kHz) and vanishes below 2 mm (1.4 kHz, whose period approaches the
-    # 1.1 ms contact: the barrel keeps its energy, 30-36 J of the 261 J, as vibration; Russell
-    # (Acoustics Today 2017): a barrel below about 1 kHz performs worse than wood). The thick
-    # wall tends to the rigid bat (within 2 %). With the shell's inertia left out (every shell
-    # mode quasi-static) the same barrels would rise monotonically as the wall thins: the
-    # optimum is the shell's mass at work.
+    # stores more of the deformation that the lossy ball would waste and returns it. Published:
+    # a lower hoop frequency goes with a livelier bat across the commercial range, 1-2.5 kHz
+    # (Russell 2004; Sutton & Sherwood 2010; Nathan et al. 2011). Stationary bat at 60 m/s
+    # (BBCOR-style), the viscoelastic ball, maximum COR over the full-diameter barrel
+    # (0.56-0.855 m, 1 cm steps), walls 1.6-6 mm (hoop frequency 1.1-4.3 kHz). Measured:
+    # 0.720, 0.670, 0.631, 0.601, 0.578, 0.564, 0.558, 0.546: falling as the wall thickens, by
+    # more than 0.005 a step; the thick wall tends to the rigid bat (0.539, within 2 %). With
+    # Nathan's rate-free ball and batcert 0.2's largest footprint held all through the impact
+    # the same barrels peaked near 2.2 kHz (docs/validation.md).
     z = np.arange(0.56, 0.86, 0.01)
-    bbcor = np.array([solve(hollow_bat(t), z, CANNON).cor.max() for t in WALLS])
-    static = np.array([solve(hollow_bat(t), z, CANNON, shell_max_frequency=100.0).cor.max()
-                       for t in WALLS])
-    for t, b, q in zip(WALLS, bbcor, static, strict=True):
-        print(f"wall {t * 1e3:.1f} mm: BBCOR {b:.4f} (quasi-static shell {q:.4f})")
-    rigid = RigidEngine().solve(hollow_bat(6e-3), BALL, PIVOT, ImpactBatch(z - PIVOT, *CANNON))
-    best = int(np.argmax(bbcor))
-    assert 0 < best < WALLS.size - 1 and bbcor[best] > bbcor[0] + 0.02
+    bbcor = np.array([solve(hollow_bat(t), z, CANNON, ball=VISCO).cor.max() for t in WALLS])
+    rigid = RigidEngine().solve(hollow_bat(6e-3), VISCO, PIVOT, ImpactBatch(z - PIVOT, *CANNON))
+    assert np.all(np.diff(bbcor) < -0.005)
     assert bbcor[-1] == pytest.approx(rigid.cor.max(), rel=0.02)
-    assert np.all(np.diff(static) < 0)
 
 
 def test_hollow_diagnostics():
@@ -517,13 +577,19 @@ def test_hollow_diagnostics():
 
 
 def test_ball_loss_follows_its_compression():
-    # physics/contact.py: e0 is the ball's rigid-wall COR at the wall speed that compresses it
-    # as far. A compliant barrel squeezes the ball less than a solid bat at the same speed, so
-    # its e0 is higher; against a stiff bat e0 tends to that of the compression-equivalent wall.
+    # physics/balls/hysteresis.py: e0 is the ball's rigid-wall COR at the wall speed that
+    # stores as much energy in it (on the barrel's round surface its stiffness is Hertz's
+    # factor times the flat wall's). A compliant barrel squeezes the ball less than a solid bat
+    # at the same speed, so its e0 is higher.
+    from batcert.physics.balls import footprint
+    from batcert.physics.balls.hysteresis import equivalent_wall_speed
+
     r161 = r161_bat()
     d = solve(r161, [0.70], CANNON).diagnostics
-    v_eq = contact.equivalent_wall_speed(d["max_compression"], BALL.mass, BALL.k1, BALL.alpha)
-    assert d["e0"][0] == pytest.approx(float(BALL.cor(v_eq)[0]), rel=1e-12)
+    i = int(np.searchsorted(r161.z_edges, 0.70, side="right")) - 1  # the impact's slice
+    k1 = BALL.law.k1 * footprint.stiffness_ratio(BALL.radius, 0.5 * r161.outer_diameter[i])
+    v_eq = equivalent_wall_speed(d["max_compression"], BALL.mass, k1, BALL.law.alpha)
+    assert d["e0"][0] == pytest.approx(float(BALL.law.cor_at(v_eq)[0]), rel=1e-12)
     assert solve(hollow_bat(2.0e-3), [0.70], CANNON).diagnostics["max_compression"][0] < \
         d["max_compression"][0]
 
@@ -556,3 +622,25 @@ def test_input_errors(r161):
     for bad in ({"n_modes": 0}, {"time_step": 0.0}, {"ball_loss": "spring"}):
         with pytest.raises(ValueError):
             FlexibleEngine(**bad)
+
+
+# -- the viscoelastic ball --------------------------------------------------------------------
+
+@pytest.mark.parametrize("case", ["solid", "hollow"])
+def test_viscoelastic_ball_agrees_with_reference_integration(r161, case):
+    # The viscoelastic law's branch variable integrated with the step's exponential stages
+    # (physics/balls/viscoelastic.py) and, on a hollow bat, the shell's coupling following the
+    # footprint from a table (physics/coupling.py), against solve_ivp of the same equations with
+    # the coupling evaluated afresh (rtol 1e-9): stationary bat at 60 m/s, pinned, impacts from
+    # the taper to the tip. Within 0.1 % of the approach speed (brief; the exit speed itself
+    # passes near zero at 0.45 m); measured: solid 4.1e-5, hollow 2.0 mm wall 1.9e-5 (the
+    # table's linear interpolation and the couplings frozen through a step's stages); contact
+    # times within 1 %.
+    bat = r161 if case == "solid" else hollow_bat(2.0e-3)
+    z = np.array([0.45, 0.60, 0.66, 0.70, 0.76, 0.82])
+    out = solve(bat, z, CANNON, ball=VISCO)
+    modes = cached_modes(bat, "pinned", PIVOT, DEFAULT_MODES)
+    ref = np.array([reference_impact(bat, VISCO, PIVOT, "pinned", zi, *CANNON, modes, rtol=1e-9)
+                    for zi in z])
+    assert change(out.exit_speed, ref[:, 0], CANNON, z) < 1e-3
+    np.testing.assert_allclose(out.diagnostics["contact_time"], ref[:, 1], rtol=1e-2)

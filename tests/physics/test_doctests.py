@@ -7,7 +7,8 @@ import doctest
 
 import pytest
 
-from batcert.physics import contact, rigid
+from batcert.physics import rigid
+from batcert.physics.balls import hysteresis as contact
 
 
 @pytest.mark.parametrize("module", [rigid, contact], ids=lambda m: m.__name__)

@@ -15,6 +15,7 @@ from batcert.engines import ImpactBatch, get_engine
 from batcert.model.geometry import build_geometry
 from batcert.physics import rigid
 from batcert.physics.ball import BallModel
+from batcert.physics.balls import PowerLawHysteresis, Viscoelastic
 from batcert.specs.materials import LIBRARY
 
 N = 2000
@@ -176,16 +177,18 @@ def test_free_bat_recoil_factor():
 
 @pytest.mark.parametrize("ball_loss", ["compression", "relative-speed"])
 def test_engine_matches_closed_form_and_ball_cor(ball_loss):
-    """RigidEngine: pinned exit speed is the closed form with the ball's COR at the wall speed
-    that compresses the ball as much, v_rel / sqrt(1 + k) (the 0.5 mu v^2 of the impact stored in
-    the ball; physics/contact.py), or at the relative speed itself; the COR it reports (Eq. 3)
-    equals that ball COR; Eq. 1 holds."""
+    """RigidEngine with Nathan's law: pinned exit speed is the closed form with the ball's COR at
+    the wall speed that compresses the ball as much, v_rel / sqrt(1 + k) (the 0.5 mu v^2 of the
+    impact stored in the ball; physics/balls/hysteresis.py), or at the relative speed itself;
+    the COR it reports (Eq. 3) equals that ball COR; Eq. 1 holds."""
     bat = build_geometry("rod", "solid", 0.84, [0.0, 0.84], [0.05, 0.065], LIBRARY["ash"][0])
-    ball = BallModel("b", 0.145, 0.0366, (10.0, 60.0), (0.6, 0.5))
+    ball = BallModel("b", 0.145, 0.0366, PowerLawHysteresis(6.53e7, 1.84, (10.0, 60.0), (0.6, 0.5)))
     pivot = 0.15
     r = np.linspace(0.3, 0.65, 36)
     batch = ImpactBatch(r, np.full(r.size, -31.0), np.linspace(0.0, 60.0, r.size))
     out = get_engine("rigid", ball_loss=ball_loss).solve(bat, ball, pivot, batch)
+    # (Nathan's law: the round surface does not change a rigid body's COR, the ball stores the
+    # same energy whatever its stiffness)
     moi = bat.moi_about(pivot)
     reduced = 1 / (1 + ball.mass * r**2 / moi) if ball_loss == "compression" else 1.0
     e = ball.cor(batch.relative_speed * np.sqrt(reduced))
@@ -203,7 +206,7 @@ def test_free_bat_reports_the_cor_it_used_and_conserves_momentum():
     (at the free bat's compression-equivalent wall speed); linear momentum and
     angular momentum about the CG are conserved with the free bat's w2 (its angular velocity)."""
     bat = build_geometry("rod", "solid", 0.84, [0.0, 0.84], [0.05, 0.065], LIBRARY["ash"][0])
-    ball = BallModel("b", 0.145, 0.0366, (10.0, 60.0), (0.6, 0.5))
+    ball = BallModel("b", 0.145, 0.0366, PowerLawHysteresis(6.53e7, 1.84, (10.0, 60.0), (0.6, 0.5)))
     pivot = 0.093  # instantaneous centre of Nathan's game-speed swing (24 m/s at 51 rad/s)
     r = np.linspace(0.3, 0.72, 22)
     batch = ImpactBatch(r, np.full(r.size, -40.0), np.full(r.size, 51.0))
@@ -224,3 +227,27 @@ def test_free_bat_reports_the_cor_it_used_and_conserves_momentum():
     np.testing.assert_allclose((point_after - out.exit_speed)
                                / (batch.pitch_speed - batch.bat_angular_speed * r), out.cor,
                                rtol=1e-12)
+
+
+def test_viscoelastic_ball_on_a_rigid_bat_is_its_integrated_impact():
+    """RigidEngine with the viscoelastic law: the COR it reports is the ball's integrated
+    impact on a rigid body of the bat's effective mass (Eq. 3), on the bat's round surface
+    (Hertz's factor); a heavier effective mass (impacts near the pivot) gives a COR nearer the
+    rigid wall's; Eq. 1 holds."""
+    from batcert.physics.balls import footprint
+
+    bat = build_geometry("rod", "solid", 0.84, [0.0, 0.84], [0.066, 0.066], LIBRARY["ash"][0])
+    law = Viscoelastic(5.7e7, 1.68, 0.37, 155e-6)
+    ball = BallModel("v", 0.145, 0.0369, law)
+    pivot, r = 0.15, np.linspace(0.2, 0.65, 10)
+    batch = ImpactBatch(r, np.full(r.size, -60.0), 0.0)
+    out = get_engine("rigid").solve(bat, ball, pivot, batch)
+    k = ball.mass * r**2 / bat.moi_about(pivot)
+    gamma = footprint.stiffness_ratio(ball.radius, 0.033)
+    expected = law.body_impact(ball.mass, 60.0, k, history=False, scale=gamma).cor
+    np.testing.assert_allclose(out.cor, expected, rtol=1e-12)
+    flat = get_engine("rigid", contact_surface="flat").solve(bat, ball, pivot, batch).cor
+    assert np.all(flat != out.cor)  # the round surface matters for this law
+    lhs = bat.moi_about(pivot) * 0.0 + ball.mass * -60.0 * r
+    rhs = bat.moi_about(pivot) * out.bat_angular_speed_after + ball.mass * out.exit_speed * r
+    np.testing.assert_allclose(rhs, lhs, rtol=1e-12)

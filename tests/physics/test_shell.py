@@ -12,7 +12,6 @@ from batcert.physics.shell import (
     Assembler,
     ShellOfRevolution,
     assemble,
-    circumferential_factor,
     element_matrices,
     harmonic_modes,
     ring_frequency,
@@ -126,14 +125,6 @@ def test_modes_are_mass_normalised_and_closed_ends_hold_the_edge():
     np.testing.assert_allclose(v.T @ system.mass @ v, np.eye(v.shape[1]), atol=1e-9)
     w_first, v_first = modes.vectors[3], modes.vectors[1]  # W and V at the first node
     assert np.all(w_first == 0) and np.all(v_first == 0)
-
-
-def test_circumferential_factor():
-    # 2 J1(x) / x: 1 for a point load, smaller for a wide patch, decaying with the order
-    assert circumferential_factor(0, 0.9) == 1.0
-    assert circumferential_factor(2, 1e-9) == pytest.approx(1.0)
-    c = circumferential_factor(np.arange(1, 12), 0.9)
-    assert np.all(np.abs(c) <= 1) and abs(c[-1]) < 0.1
 
 
 def test_static_stiffness_is_symmetric_positive():

@@ -5,7 +5,9 @@ always safe.
 
 Where: ``$BATCERT_CACHE_DIR``, else ``$XDG_CACHE_HOME/batcert`` or ``~/.cache/batcert``, one
 folder per kind (``templates``: compiled report templates; ``barrels``: hollow bats' barrel
-shells, :mod:`batcert.physics.barrel`).
+shells, :mod:`batcert.physics.barrel`; ``modes``: bats' beam modes; ``ball-fits``: viscoelastic
+balls fitted to their tests; ``ball-walls``: balls' rigid-wall tables,
+:mod:`batcert.physics.balls`).
 """
 
 from __future__ import annotations

@@ -74,12 +74,15 @@ def _guard(func):
 def _use_cache() -> None:
     """Keep hollow bats' barrel shells and every bat's beam modes in the cache directory
     (batcert.cache) between runs: a wall costs 0.1-0.3 s to compute and its scipy import
-    0.15 s more; a bat's modes 5 ms per support and pivot."""
+    0.15 s more; a bat's modes 5 ms per support and pivot; likewise a viscoelastic ball's fit
+    (about a second) and its rigid-wall table (about 20 ms)."""
     from batcert.cache import ArrayStore
     from batcert.physics import stores
 
     stores.use("barrel", ArrayStore("barrels", stores.CODE["barrel"]))
     stores.use("modes", ArrayStore("modes", stores.CODE["modes"]))
+    stores.use("ball-fit", ArrayStore("ball-fits", stores.CODE["ball-fit"]))
+    stores.use("ball-wall", ArrayStore("ball-walls", stores.CODE["ball-wall"]))
 
 
 def _formats(value: str) -> list[str]:
@@ -363,24 +366,57 @@ def _show_bat(info: dict) -> None:
         console.kv_table("barrel (shell of revolution; SI: m, Hz)", list(flatten(info["barrel"])))
 
 
+_TEST_UNITS = {"cor": ("", 1.0, "{:.3f}"), "cylinder_cor": ("", 1.0, "{:.3f}"),
+               "peak_force": ("kN", 1e-3, "{:.2f}"), "collision_time": ("ms", 1e3, "{:.3f}"),
+               "contact_time": ("ms", 1e3, "{:.3f}"), "compression": ("N", 1.0, "{:.0f}")}
+
+
 def _show_ball(info: dict) -> None:
     from batcert.reports.table import Table
     from batcert.units import show
 
-    console.kv_table(info["name"], [
-        ("mass", str(show(info["mass"], "mass", 4))),
-        ("radius", f"{info['radius'] * 1e3:.1f} mm"),
-        ("contact law", f"{info['contact_model']}: k1 = {info['k1']:.4g} N/m^alpha, "
-                        f"alpha = {info['alpha']:g}"),
-        ("COR points", ", ".join(f"{e:g} at {v:g} m/s" for v, e in info["cor_points"]))])
+    law = info["law"]
+    if law["model"] == "viscoelastic":
+        what = (f"viscoelastic: k0 = {law['stiffness']:.4g} N/m^a, a = {law['exponent']:.4g}, "
+                f"k_inf / k0 = {law['relaxed_fraction']:.3g}, tau = "
+                f"{law['relaxation_time'] * 1e6:.1f} us")
+    else:
+        what = f"power-law hysteresis: k1 = {law['k1']:.4g} N/m^alpha, alpha = {law['alpha']:g}"
+    rows = [("mass", str(show(info["mass"], "mass", 4))),
+            ("radius", f"{info['radius'] * 1e3:.1f} mm"), ("contact law", what)]
+    fit = info.get("fit")
+    if fit:
+        u = fit["parameter_uncertainty"]
+        rows.append(("fitted to the tests", f"chi-square {fit['chi2']:.2f} for {fit['dof']} "
+                     f"degrees of freedom; u(a) = {u['exponent']:.2g}, u(tau) = "
+                     f"{u['relaxation_time'] * 1e6:.2g} us"))
+    console.kv_table(info["name"], rows)
+    if info["tests"]:
+        table = []
+        for t in info["tests"]:
+            unit, factor, f = _TEST_UNITS[t["test"]]
+            cond = (f"{t['condition'] * 1e3:.2f} mm" if t["test"] == "compression"
+                    else f"{t['condition']:g} m/s")
+            if t["surface_diameter"]:
+                cond += f", {t['surface_diameter'] * 1e3:.1f} mm cylinder"
+            measured = f.format(t["value"] * factor)
+            if t["uncertainty"]:
+                measured += " +/- " + f.format(t["uncertainty"] * factor)
+            table.append([t["test"].replace("_", " "), cond, f"{measured} {unit}".strip(),
+                          f"{f.format(t['model'] * factor)} {unit}".strip(),
+                          "" if t["residual"] is None else f"{t['residual']:+.2f}"])
+        console.table(Table(["test", "condition", "measured", "law", "(law - measured) / u"],
+                            table, [False, False, True, True, True]),
+                      "ball tests (the uncertainty is one standard uncertainty)")
     rows = [[f"{v:g}", f"{e:.3f}", f"{ct * 1e3:.2f}", f"{cl * 1e3:.2f}", f"{u * 1e3:.1f}",
-             f"{f / 1e3:.1f}"]
-            for v, e, ct, cl, u, f in zip(info["speeds"], info["cor"], info["contact_time"],
-                                          info["collision_time"], info["max_compression"],
-                                          info["peak_force"], strict=True)]
+             f"{us * 1e3:.1f}", f"{f / 1e3:.1f}"]
+            for v, e, ct, cl, u, us, f in zip(info["speeds"], info["cor"], info["contact_time"],
+                                              info["collision_time"], info["max_compression"],
+                                              info["separation_compression"], info["peak_force"],
+                                              strict=True)]
     console.table(Table(["speed [m/s]", "COR", "contact time [ms]", "99 % impulse [ms]",
-                         "max compression [mm]", "peak force [kN]"], rows, [True] * 6),
-                  "against a rigid wall")
+                         "max compression [mm]", "left at separation [mm]", "peak force [kN]"],
+                        rows, [True] * 7), "against a rigid wall")
 
 
 @main.command(epilog=CHECK_EXIT_CODES + """

@@ -51,18 +51,37 @@ def rounded(data, digits: int = SIGNIFICANT):
     return map_floats(data, lambda x: float(f"{x:.{digits}g}") if np.isfinite(x) else x)
 
 
-def inspect_ball(ball: BallSpec, speeds=(1.0, 11.0, 25.9, 45.0, 58.0, 60.0, 67.0)) -> dict:
-    """The ball spec and its rigid-wall response against impact speed (SI): COR, contact time,
-    99 %-impulse collision time, maximum compression and peak force (Nathan 2000 law with
-    e0 = the spec's COR at each speed)."""
-    from batcert.physics import contact
+def inspect_ball(ball: BallSpec, speeds=(1.0, 11.0, 25.9, 26.8, 45.0, 58.0, 60.8, 67.0)) -> dict:
+    """The ball spec, its contact law (and fit), each ball test beside the law's value, and
+    the ball against a rigid wall against impact speed (SI): COR, contact time, 99 %-impulse
+    collision time, maximum compression, compression at separation and peak force."""
+    from batcert.physics.balls.fit import test_values
+    from batcert.specs.ball import ball_tests
+
     b = ball.model
-    wall = contact.ball_wall_impact(b, np.asarray(speeds, dtype=float))
+    v = np.asarray(speeds, dtype=float)
+    wall = b.law.wall_impact(b.mass, v)  # Nathan's law in closed form, else integrated
+    left = getattr(wall, "separation_compression", np.zeros(v.size))
+    tests = ball_tests(ball.tests)
+    model = test_values(b.law, tests, b.mass, b.radius) if ball.fit is None else ball.fit.model
+    rows = []
+    for (key, point), t, m in zip(ball.tests, tests, model, strict=True):
+        rows.append({"test": key, "condition": t.condition, "value": t.value,
+                     "uncertainty": t.uncertainty or None,
+                     "surface_diameter": None if not np.isfinite(t.surface_diameter)
+                     else t.surface_diameter, "model": float(m),
+                     "residual": float((m - t.value) / t.uncertainty) if t.uncertainty else None,
+                     "line": point.line})
+    fit = None
+    if ball.fit is not None:
+        fit = {"chi2": ball.fit.chi2, "dof": ball.fit.dof,
+               "parameter_uncertainty": dict(ball.fit.uncertainty)}
     return rounded({"name": b.name, "file": ball.path, "sha256": ball.sha256, "mass": b.mass,
-            "radius": b.radius, "contact_model": b.contact_model, "k1": b.k1, "alpha": b.alpha,
-            "cor_points": [list(p) for p in zip(b.cor_speeds, b.cor_values, strict=True)],
-            "speeds": list(map(float, speeds)), "cor": wall.cor.tolist(),
-            "contact_time": wall.contact_time.tolist(),
-            "collision_time": wall.collision_time.tolist(),
-            "max_compression": wall.max_compression.tolist(),
-            "peak_force": wall.peak_force.tolist()})
+                    "radius": b.radius, "contact_model": b.contact_model,
+                    "law": b.law.describe(), "fit": fit, "tests": rows,
+                    "speeds": list(map(float, speeds)), "cor": wall.cor.tolist(),
+                    "contact_time": wall.contact_time.tolist(),
+                    "collision_time": wall.collision_time.tolist(),
+                    "max_compression": wall.max_compression.tolist(),
+                    "separation_compression": np.asarray(left).tolist(),
+                    "peak_force": wall.peak_force.tolist()})

@@ -1,65 +1,63 @@
-"""Ball specification: mass, radius, speed-dependent rigid-wall COR, contact law."""
+"""Ball specification: mass, radius, what ball tests measured, and the contact law.
+
+A ball file states what a ball lab measures, each test a list of points with their
+conditions (and, for a fit, their uncertainties, ``0.546 +/- 0.018``): the COR against a rigid
+flat wall at several speeds (``cor``; ASTM F1887 at 60 mph, cannon tests), against a rigid
+cylinder (``cylinder_cor``; ASTM F2845), peak forces, collision and contact times, and the
+quasi-static compression (ASTM F1888). The ``contact`` section names the law
+(:data:`batcert.physics.balls.LAWS`): Nathan's power-law hysteresis takes its ``k1`` and
+``alpha`` and reads its loss off the ``cor`` points; the viscoelastic law takes its four
+parameters, or (without them) has them fitted to the tests (:mod:`batcert.physics.balls.fit`;
+a fit that cannot be trusted is an input error at the test at fault).
+"""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from batcert.errors import Collector
+from batcert.errors import Collector, InputError, Problem
 from batcert.physics.ball import BallModel
+from batcert.physics.balls import LAWS, PowerLawHysteresis, Viscoelastic
+from batcert.physics.balls.fit import BallFit, BallTest, FitError, cached_fit
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked
-from batcert.specs.schema import Field, FieldError, Kind, Schema, choice, number, quantity, section, text
+from batcert.specs.schema import (
+    Field,
+    FieldError,
+    Kind,
+    Schema,
+    choice,
+    number,
+    quantity,
+    section,
+    text,
+)
 from batcert.specs.yamlio import LocatedList, load_yaml
-from batcert.units import UnitError, parse_quantity, read_spread, split_uncertainty, uncertain
+from batcert.units import DIMENSIONS, UnitError, parse_quantity, read_spread, split_uncertainty, uncertain
 
 
-def _cor_points() -> Kind:
-    def parse(value: Any, errors: Collector, path: str):
-        if not isinstance(value, LocatedList) or not value:
-            raise FieldError("expected a list of [impact speed, COR] pairs, e.g. [[85 ft/s, 0.546]]")
-        speeds: list[float] = []
-        cors: list[float] = []
-        ok = True
-        for i, item in enumerate(value):
-            line, col = value.item_pos[i]
-            sub = f"{path}[{i}]"
-            if not isinstance(item, LocatedList) or len(item) != 2:
-                errors.add(line, sub, "expected a pair [impact speed, COR], e.g. [85 ft/s, 0.546]", col)
-                ok = False
-                continue
-            try:
-                v = parse_quantity(item[0], "speed")
-            except UnitError as exc:
-                errors.add(line, sub, str(exc), col)
-                ok = False
-                continue
-            try:
-                e = _cor_value(item[1])
-            except ValueError as exc:
-                errors.add(line, sub, str(exc), col)
-                ok = False
-                continue
-            if v <= 0 or (speeds and v <= speeds[-1]):
-                errors.add(line, sub, "impact speeds must be positive and increasing", col)
-                ok = False
-                continue
-            speeds.append(v)
-            cors.append(e)
-        return (tuple(speeds), tuple(cors)) if ok else None
+@dataclass(frozen=True)
+class TestPoint:
+    """One measured point of a ball test: its condition (speed [m/s], or displacement [m] for
+    ``compression``), value (SI; an :class:`~batcert.units.Uncertain` when stated with one),
+    rigid surface's diameter [m] (``inf``: flat) and the point's 1-based line in the file."""
 
-    return Kind("list of [impact speed, COR] pairs; each COR may carry `+/- u` (the ball "
-                "lot's spread)", parse, "m/s")
+    condition: float
+    value: float
+    surface_diameter: float
+    line: int | None
 
 
 def _cor_value(value: Any) -> float:
     """A COR in (0, 1], or ``0.546 +/- 0.008`` (an :class:`Uncertain`)."""
-    text, u_text = split_uncertainty(value)
+    text_, u_text = split_uncertainty(value)
     distribution = "normal"
     try:
         if u_text is not None:
             u_text, distribution = read_spread(value, u_text)
-        e = float(text) if u_text is not None else text  # type: ignore[arg-type]
+        e = float(text_) if u_text is not None else text_  # type: ignore[arg-type]
         u = None if u_text is None else float(u_text)
     except UnitError as exc:
         raise ValueError(str(exc)) from None
@@ -75,14 +73,142 @@ def _cor_value(value: Any) -> float:
     return uncertain(float(e), u, distribution, value)
 
 
+def _quantity_value(dimension: str):
+    def read(value: Any) -> float:
+        from batcert.units import parse_uncertain
+
+        try:
+            v = parse_uncertain(value, dimension)
+        except UnitError as exc:
+            raise ValueError(str(exc)) from None
+        if not v > 0:
+            raise ValueError(f"must be positive, got {value!r}")
+        return v
+    return read
+
+
+def _points(condition: str, condition_name: str, value_name: str, example: str, read_value,
+            *, surface: bool = False, increasing: bool = False) -> Kind:
+    """A list of ``[condition, value]`` points (``[condition, value, cylinder diameter]``
+    with ``surface``); each value may carry its uncertainty (``+/- u``)."""
+    shape = f"[{condition_name}, {value_name}" + (", surface diameter or flat]" if surface else "]")
+
+    def parse(value: Any, errors: Collector, path: str):
+        if not isinstance(value, LocatedList) or not value:
+            raise FieldError(f"expected a list of {shape} points, e.g. [{example}]")
+        out: list[TestPoint] = []
+        ok = True
+        for i, item in enumerate(value):
+            line, col = value.item_pos[i]
+            sub = f"{path}[{i}]"
+            size = 3 if surface else 2
+            if not isinstance(item, LocatedList) or len(item) != size:
+                errors.add(line, sub, f"expected {shape}, e.g. {example}", col)
+                ok = False
+                continue
+            try:
+                c = parse_quantity(item[0], condition)
+                if not c > 0:
+                    raise UnitError(f"{condition_name} must be positive, got {item[0]!r}")
+                v = read_value(item[1])
+                d = math.inf
+                if surface:
+                    d = _read_flat(item[2])
+                    if not (d == math.inf or 0.01 <= d <= 1.0):
+                        raise UnitError(f"the cylinder's diameter must be 10-1000 mm (or "
+                                        f"`flat`), got {item[2]!r}")
+            except (UnitError, ValueError) as exc:
+                errors.add(line, sub, str(exc), col)
+                ok = False
+                continue
+            if increasing and out and not c > out[-1].condition:
+                errors.add(line, sub, f"{condition_name}s must increase; {item[0]} follows "
+                           f"{value[i - 1][0]}", col)
+                ok = False
+                continue
+            out.append(TestPoint(c, v, d, line))
+        return tuple(out) if ok else None
+
+    return Kind(f"list of {shape} points; each {value_name} may carry `+/- u`", parse,
+                DIMENSIONS[condition][1])
+
+
+# every ball test: the file's key, its kind in the fit, and how it is read
+TESTS: dict[str, tuple[Kind, str]] = {
+    "cor": (_points("speed", "impact speed", "COR", "[85 ft/s, 0.546 +/- 0.018]", _cor_value,
+                    increasing=True),
+            "Rigid-wall COR at impact speeds (ASTM F1887: 60 mph into a rigid flat wall; cannon "
+            "tests). Nathan's law reads its loss off these points (linear in speed between "
+            "them, constant beyond); the viscoelastic law is fitted to them. Required."),
+    "cylinder_cor": (_points("speed", "impact speed", "COR", "[60 mph, 0.50 +/- 0.01, 2.25 in]",
+                             _cor_value, surface=True),
+                     "COR against a rigid cylinder of the stated diameter (ASTM F2845's CCOR)."),
+    "peak_force": (_points("speed", "impact speed", "peak force",
+                           "[60 mph, 3000 lbf +/- 100 lbf, flat]", _quantity_value("force"),
+                           surface=True),
+                   "Largest force of an impact on a rigid flat wall (diameter `flat`) or "
+                   "cylinder, by load cells."),
+    "collision_time": (_points("speed", "impact speed", "time", "[45 m/s, 0.7 ms +/- 0.04 ms]",
+                               _quantity_value("time")),
+                       "Time over which the central 99 % of the impulse acts against a rigid "
+                       "wall (Nathan 2000's collision time)."),
+    "contact_time": (_points("speed", "impact speed", "time", "[26.8 m/s, 0.95 ms +/- 0.05 ms]",
+                             _quantity_value("time")),
+                     "First touch to separation against a rigid wall."),
+    "compression": (_points("length", "diametral displacement", "force",
+                            "[0.25 in, 250 lbf +/- 10 lbf]", _quantity_value("force")),
+                    "Quasi-static force squeezing the ball between flat platens by a diametral "
+                    "displacement (ASTM F1888: 0.25 in, slowly)."),
+}
+_KIND = {"cor": "cor", "cylinder_cor": "cylinder_cor", "peak_force": "peak_force",
+         "collision_time": "collision_time", "contact_time": "contact_time",
+         "compression": "compression"}
+
+
+def _read_flat(value: Any) -> float:
+    return math.inf if str(value).strip().lower() == "flat" else parse_quantity(value, "length")
+
+
+_HYSTERESIS = ("k1", "alpha")
+_VISCOELASTIC = ("stiffness", "exponent", "relaxed_fraction", "relaxation_time")
+
+
+def _contact_check(values: dict, data, errors: Collector, path: str) -> None:
+    """Each law's own parameters: Nathan's needs ``k1`` and ``alpha``; the viscoelastic law
+    takes all four of its parameters or none (then they are fitted to the tests)."""
+    model = values["model"]
+    own = _HYSTERESIS if model == "power-law-hysteresis" else _VISCOELASTIC
+    for name in _HYSTERESIS + _VISCOELASTIC:
+        if name not in own and values.get(name) is not None:
+            errors.add(data.key_pos[name][0], f"{path}.{name}",
+                       f"not a parameter of the {model} law (its parameters: {', '.join(own)})")
+    given = [n for n in own if values.get(n) is not None]
+    if model == "power-law-hysteresis" and len(given) < 2:
+        for name in own:
+            if values.get(name) is None:
+                errors.add(data.line, f"{path}.{name}", "required by the power-law-hysteresis law")
+    if model == "viscoelastic" and 0 < len(given) < len(own):
+        missing = [n for n in own if values.get(n) is None]
+        errors.add(data.line, path, f"give all four parameters of the viscoelastic law or none "
+                   f"(none: they are fitted to the ball tests); missing: {', '.join(missing)}")
+
+
 CONTACT_SCHEMA = Schema("contact law", (
-    Field("model", choice("power-law-hysteresis"), "Contact law (Nathan 2000): compression "
-          "F = k1 u^alpha, restitution F = k2 u^beta, beta = (1 + alpha)/e^2 - 1.",
+    Field("model", choice(*LAWS), "Contact law: " + "; ".join(
+        f"`{e.name}`, {e.title}: {e.doc}" for e in LAWS.values()) + ".",
           default="power-law-hysteresis"),
-    Field("k1", number(minimum=1e3, maximum=1e12), "Compression stiffness [N/m^alpha].",
-          required=True),
-    Field("alpha", number(minimum=1.0, maximum=3.0), "Compression exponent.", required=True),
-))
+    Field("k1", number(minimum=1e3, maximum=1e12), "power-law-hysteresis: compression "
+          "stiffness [N/m^alpha]."),
+    Field("alpha", number(minimum=1.0, maximum=3.0), "power-law-hysteresis: compression "
+          "exponent."),
+    Field("stiffness", number(minimum=1e3, maximum=1e13), "viscoelastic: instantaneous "
+          "stiffness k0 [N/m^exponent] (omit the four to fit them)."),
+    Field("exponent", number(minimum=1.0, maximum=3.0), "viscoelastic: exponent a of u^a."),
+    Field("relaxed_fraction", number(exclusive_minimum=0.0, maximum=1.0), "viscoelastic: "
+          "relaxed over instantaneous stiffness."),
+    Field("relaxation_time", quantity("time", positive=True), "viscoelastic: relaxation time "
+          "tau."),
+), checks=(_contact_check,))
 
 BALL_SCHEMA = Schema("ball", (
     Field("name", text(), "Ball name shown in reports.", required=True),
@@ -92,19 +218,20 @@ BALL_SCHEMA = Schema("ball", (
           required=True),
     Field("radius", quantity("length", minimum=0.02, maximum=0.1), "Ball radius (20-100 mm).",
           required=True),
-    Field("cor", _cor_points(), "Rigid-wall COR at one or more impact speeds; piecewise linear "
-          "in speed between points, constant beyond the first and last.", required=True),
-    Field("contact", section(CONTACT_SCHEMA), "Contact law parameters.", required=True),
+    *(Field(name, kind, doc, required=name == "cor") for name, (kind, doc) in TESTS.items()),
+    Field("contact", section(CONTACT_SCHEMA), "Contact law and its parameters.", required=True),
 ))
 
 
 @dataclass(frozen=True)
 class BallSpec:
-    """A validated ball file and the ball model it defines."""
+    """A validated ball file, the ball model it defines and, for a fitted law, the fit."""
 
     source: Source
     name: str
     model: BallModel
+    tests: tuple[tuple[str, TestPoint], ...] = ()  # (file key, point) of every test point
+    fit: BallFit | None = None
 
     @property
     def path(self) -> str:
@@ -115,11 +242,49 @@ class BallSpec:
         return self.source.sha256
 
 
+def ball_tests(tests: tuple[tuple[str, TestPoint], ...]) -> tuple[BallTest, ...]:
+    """The points as the fit takes them (each with its standard uncertainty)."""
+    return tuple(BallTest(_KIND[key], p.condition, float(p.value), float(getattr(p.value, "u", 0)),
+                          p.surface_diameter) for key, p in tests)
+
+
 def load_ball(path: str | Path) -> BallSpec:
-    """Read and validate a ball file; raise InputError with every problem of the file."""
+    """Read and validate a ball file; raise InputError with every problem of the file (a
+    viscoelastic fit that cannot be trusted included)."""
     data = load_yaml(path)
     v = load_checked(path, BALL_SCHEMA, data)
     c = v["contact"]
-    model = BallModel(v["name"], v["mass"], v["radius"], v["cor"][0], v["cor"][1],
-                      c["model"], c["k1"], c["alpha"])
-    return BallSpec(Source.of(path, data), v["name"], model)
+    tests = tuple((key, p) for key in TESTS for p in (v[key] or ()))
+    mass, radius = v["mass"], v["radius"]
+    fit = None
+    if c["model"] == "power-law-hysteresis":
+        cor = v["cor"]
+        law: PowerLawHysteresis | Viscoelastic = PowerLawHysteresis(
+            c["k1"], c["alpha"], tuple(p.condition for p in cor), tuple(p.value for p in cor))
+    elif c["stiffness"] is not None:
+        law = Viscoelastic(c["stiffness"], c["exponent"], c["relaxed_fraction"],
+                           c["relaxation_time"])
+    else:
+        fit = _fitted(path, data, tests, float(mass), radius)
+        law = fit.law
+    model = BallModel(v["name"], mass, radius, law)
+    return BallSpec(Source.of(path, data), v["name"], model, tests, fit)
+
+
+def _fitted(path, data, tests, mass: float, radius: float) -> BallFit:
+    """:func:`cached_fit` of the file's tests; its refusal as an input error at the test."""
+    problems = []
+    for key, p in tests:
+        if not getattr(p.value, "u", 0) > 0:
+            problems.append(Problem(str(path), p.line, key, "a fitted viscoelastic ball needs "
+                                    "every test's standard uncertainty ('0.546 +/- 0.018')"))
+    if problems:
+        raise InputError(problems)
+    try:
+        return cached_fit(ball_tests(tests), mass, radius)
+    except FitError as exc:
+        if exc.test is not None:
+            key, p = tests[exc.test]
+            raise InputError([Problem(str(path), p.line, key, str(exc))]) from None
+        line = data["contact"].key_pos.get("model", (data.line, None))[0]
+        raise InputError([Problem(str(path), line, "contact.model", str(exc))]) from None

@@ -88,12 +88,17 @@ def stated_inputs(bat: BatSpec, balls: list[BallSpec]) -> list[StatedInput]:
             out.append(StatedInput("ball", ball.path, "mass", ball.source.line("mass"), "mass",
                                    (float(b.mass),), (_u(b.mass),),
                                    getattr(b.mass, "distribution", "normal")))
-        if any(_u(e) > 0 for e in b.cor_values):
+        cors = [p.value for key, p in ball.tests if key == "cor"]
+        if any(_u(e) > 0 for e in cors):
             line = ball.source.line("cor")
+            if ball.fit is None and not hasattr(b.law, "cor_values"):
+                raise InputError([Problem(ball.path, line, "cor", "the COR's uncertainty moves "
+                                          "Nathan's law or a fitted viscoelastic ball; this "
+                                          "ball's law is stated by its parameters, which the "
+                                          "COR does not move: state no uncertainty on it")])
             out.append(StatedInput("ball", ball.path, "cor", line, None,
-                                   tuple(float(e) for e in b.cor_values),
-                                   tuple(_u(e) for e in b.cor_values),
-                                   _distribution(b.cor_values, ball.path, line, "cor")))
+                                   tuple(float(e) for e in cors), tuple(_u(e) for e in cors),
+                                   _distribution(cors, ball.path, line, "cor")))
     return out
 
 
@@ -141,9 +146,13 @@ def sampled(bat: BatSpec, balls: list[BallSpec], inputs: list[StatedInput], z: n
         elif s.field == "mass":
             key = _same_file(s.path)
             models[key] = replace(models[key], mass=values[0])
-        else:
+        else:  # the COR: Nathan's law takes the drawn points; a fitted law moves along its fit
             key = _same_file(s.path)
-            models[key] = replace(models[key], cor_values=values)
+            spec = next(b for b in balls if _same_file(b.path) == key)
+            law: Any = models[key].law  # Nathan's law (cor_values) or a fitted one
+            law = spec.fit.moved(float(k)) if spec.fit is not None else replace(
+                law, cor_values=values)
+            models[key] = replace(models[key], law=law)
     return (replace(bat, measured=measured, wall=wall),
             [replace(b, model=models[_same_file(b.path)]) for b in balls])
 

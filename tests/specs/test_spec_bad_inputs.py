@@ -133,7 +133,7 @@ CASES: dict[str, list[Expect]] = {
     # --- ball files
     "ball-cor-out-of-range.yaml": [Expect(7, "cor[1]", "COR must be a number in (0, 1], got 1.2")],
     "ball-speeds-not-increasing.yaml": [
-        Expect(7, "cor[1]", "impact speeds must be positive and increasing"),
+        Expect(7, "cor[1]", "impact speeds must increase; 10 m/s follows 50 m/s"),
     ],
 }
 

@@ -104,16 +104,23 @@ def test_protocol_values_and_defaults(repo_root):
 
 
 def test_ball_values(repo_root):
-    ball = load_ball(repo_root / "protocols" / "balls" / "collegiate-baseball.yaml").model
+    spec = load_ball(repo_root / "protocols" / "balls" / "collegiate-baseball.yaml")
+    ball = spec.model
     assert ball.mass == pytest.approx(5.125 * OZ)
     assert ball.radius == pytest.approx(0.0369)
-    assert ball.cor_speeds == pytest.approx((1.0, 85 * 0.3048, 71.0))
-    assert ball.k1 == 6.53e7 and ball.alpha == 1.84  # YAML 1.1 reads 6.53e7 as text: converted
+    assert ball.contact_model == "viscoelastic" and spec.fit is not None
+    speeds = [p.condition for key, p in spec.tests if key == "cor"]
+    assert speeds == pytest.approx([1.0, 85 * 0.3048, 58.0])
+    assert [key for key, _ in spec.tests].count("collision_time") == 4
+    nathan = load_ball(repo_root / "tests" / "fixtures" / "good" / "ball-nathan-law.yaml").model
+    # YAML 1.1 reads 6.53e7 as text: converted
+    assert nathan.law.k1 == 6.53e7 and nathan.law.alpha == 1.84
 
 
 def test_cor_interpolation_rule(repo_root):
-    """Piecewise linear in speed between the points, constant outside them (docs/inputs.md)."""
-    ball = load_ball(repo_root / "protocols" / "balls" / "collegiate-baseball.yaml").model
+    """Nathan's law: piecewise linear in speed between the points, constant outside them
+    (docs/inputs.md)."""
+    ball = load_ball(repo_root / "tests" / "fixtures" / "good" / "ball-nathan-law.yaml").model
     v1, v2 = 85 * 0.3048, 71.0
     mid = 0.5 * (v1 + v2)
     assert ball.cor(mid) == pytest.approx(0.5 * (0.546 + 0.50))

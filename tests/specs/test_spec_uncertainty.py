@@ -30,6 +30,7 @@ REPO = Path(__file__).resolve().parents[2]
 ASH = REPO / "bats" / "ash-34.yaml"
 ALUMINIUM = REPO / "bats" / "aluminium-34.yaml"
 BALL = REPO / "protocols" / "balls" / "collegiate-baseball.yaml"
+NATHAN_BALL = REPO / "tests" / "fixtures" / "good" / "ball-nathan-law.yaml"
 BBCOR = REPO / "protocols" / "ncaa-bbcor.yaml"
 SQRT3 = math.sqrt(3.0)
 REL = 1e-12  # exact unit factors: only float rounding remains
@@ -160,26 +161,29 @@ def test_wall_stations_of_mixed_distributions_are_refused_at_the_wall(tmp_path):
 
 
 def test_shipped_ball_states_its_mass_and_cor_band():
-    """collegiate-baseball.yaml: mass uniform over 5-5 1/4 oz (5.125 +/- 0.125 oz), each COR
-    point +/- 0.032 uniform (MLB's 0.514-0.578 band at 85 ft/s)."""
-    model = load_ball(BALL).model
-    assert_uncertain(model.mass, 5.125 * OUNCE, 0.125 * OUNCE / SQRT3, "uniform")
-    for e, nominal in zip(model.cor_values, (0.64, 0.546, 0.50), strict=True):
-        assert_uncertain(e, nominal, 0.032 / SQRT3, "uniform")
-    assert all(type(v) is float for v in model.cor_speeds)
+    """collegiate-baseball.yaml: mass uniform over 5-5 1/4 oz (5.125 +/- 0.125 oz), the COR
+    points uniform: +/- 0.01 at 1 m/s (0.64-0.66), +/- 0.032 at 85 ft/s (MLB's 0.514-0.578
+    band) and at 58 m/s (assumed as wide)."""
+    spec = load_ball(BALL)
+    assert_uncertain(spec.model.mass, 5.125 * OUNCE, 0.125 * OUNCE / SQRT3, "uniform")
+    cors = [p for key, p in spec.tests if key == "cor"]
+    for p, nominal, half in zip(cors, (0.65, 0.546, 0.53), (0.01, 0.032, 0.032), strict=True):
+        assert_uncertain(p.value, nominal, half / SQRT3, "uniform")
+        assert type(p.condition) is float
 
 
 def test_ball_mass_and_cor_points_in_other_forms(tmp_path):
-    path = edited(tmp_path, BALL,
+    path = edited(tmp_path, NATHAN_BALL,
                   ("mass: 5.125 oz +/- 0.125 oz (uniform)\n", "mass: 145 g +/- 1\n"),
                   ("  - [1 m/s, 0.64 +/- 0.032 (uniform)]\n", "  - [1 m/s, 0.64]\n"),
                   (COR_85, "  - [85 ft/s, 0.546 ± 0.008]\n"),
                   ("  - [71 m/s, 0.50 +/- 0.032 (uniform)]\n", "  - [71 m/s, 0.50 +/- 0.01 (normal)]\n"))
     model = load_ball(path).model
     assert_uncertain(model.mass, 0.145, 0.001, "normal")  # bare 1 -> 1 g
-    assert type(model.cor_values[0]) is float and model.cor_values[0] == 0.64
-    assert_uncertain(model.cor_values[1], 0.546, 0.008, "normal")
-    assert_uncertain(model.cor_values[2], 0.50, 0.01, "normal")
+    cor = model.law.cor_values
+    assert type(cor[0]) is float and cor[0] == 0.64
+    assert_uncertain(cor[1], 0.546, 0.008, "normal")
+    assert_uncertain(cor[2], 0.50, 0.01, "normal")
 
 
 @pytest.mark.parametrize("cor, message", [
@@ -191,7 +195,7 @@ def test_ball_mass_and_cor_points_in_other_forms(tmp_path):
     ("1.2 +/- 0.01", "COR must be a number in (0, 1]"),  # the nominal is still checked
 ])
 def test_a_bad_cor_uncertainty_is_refused_at_its_point(tmp_path, cor, message):
-    path = edited(tmp_path, BALL, (COR_85, f"  - [85 ft/s, {cor}]\n"))
+    path = edited(tmp_path, NATHAN_BALL, (COR_85, f"  - [85 ft/s, {cor}]\n"))
     with pytest.raises(InputError) as exc:
         load_ball(path)
     [problem] = exc.value.problems
@@ -200,7 +204,7 @@ def test_a_bad_cor_uncertainty_is_refused_at_its_point(tmp_path, cor, message):
 
 
 def test_cor_points_of_mixed_distributions_are_refused_at_the_cor(tmp_path):
-    path = edited(tmp_path, BALL, (COR_85, "  - [85 ft/s, 0.546 +/- 0.01]\n"))
+    path = edited(tmp_path, NATHAN_BALL, (COR_85, "  - [85 ft/s, 0.546 +/- 0.01]\n"))
     ball = load_ball(path)  # each point reads
     with pytest.raises(InputError) as exc:
         stated_inputs(load_bat(ASH), [ball])

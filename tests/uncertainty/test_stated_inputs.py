@@ -30,6 +30,7 @@ REPO = Path(__file__).resolve().parents[2]
 ASH = REPO / "bats" / "ash-34.yaml"
 ALUMINIUM = REPO / "bats" / "aluminium-34.yaml"
 BALL = REPO / "protocols" / "balls" / "collegiate-baseball.yaml"
+NATHAN_BALL = REPO / "tests" / "fixtures" / "good" / "ball-nathan-law.yaml"  # batcert 0.2's
 SQRT3 = math.sqrt(3.0)
 REL = 1e-12  # exact unit factors: only float rounding remains
 
@@ -39,8 +40,8 @@ REL = 1e-12  # exact unit factors: only float rounding remains
 
 def test_shipped_ash_and_collegiate_ball():
     """ash-34.yaml: mass 906 g, cg 429 mm, moi 0.209 kg m^2, each +/- half the last digit
-    (uniform); the ball: mass 5.125 +/- 0.125 oz, COR 0.64, 0.546, 0.50 each +/- 0.032 (all
-    uniform). Bat fields first, in BAT_FIELDS order, then the ball's."""
+    (uniform); the ball: mass 5.125 +/- 0.125 oz, COR 0.65 +/- 0.01, 0.546 and 0.53 each
+    +/- 0.032 (all uniform). Bat fields first, in BAT_FIELDS order, then the ball's."""
     inputs = stated_inputs(load_bat(ASH), [load_ball(BALL)])
     expected = [
         ("bat", str(ASH), "measured.mass", line_of(ASH, "  mass:"), "mass", (0.906,), (0.0005,)),
@@ -48,8 +49,8 @@ def test_shipped_ash_and_collegiate_ball():
         ("bat", str(ASH), "measured.moi", line_of(ASH, "  moi:"), "moi", (0.209,), (0.0005,)),
         ("ball", str(BALL), "mass", line_of(BALL, "mass:"), "mass", (5.125 * OUNCE,),
          (0.125 * OUNCE,)),
-        ("ball", str(BALL), "cor", line_of(BALL, "cor:"), None, (0.64, 0.546, 0.50),
-         (0.032, 0.032, 0.032)),
+        ("ball", str(BALL), "cor", line_of(BALL, "cor:"), None, (0.65, 0.546, 0.53),
+         (0.01, 0.032, 0.032)),
     ]
     assert [(s.file, s.path, s.field, s.line, s.dimension) for s in inputs] == \
         [e[:5] for e in expected]
@@ -100,10 +101,12 @@ def test_a_ball_reached_by_two_spellings_of_its_path_is_one_source():
 
 
 def test_nothing_stated_nothing_listed(tmp_path):
+    # (a ball of Nathan's law: a fitted viscoelastic ball needs its tests' uncertainties)
     bat = tmp_path / "bat.yaml"
     bat.write_text(re.sub(r" \+/- [^#\n]*\(uniform\)", "", ASH.read_text(encoding="utf-8")))
     ball = tmp_path / "ball.yaml"
-    ball.write_text(re.sub(r" \+/- [^\]\n]*\(uniform\)", "", BALL.read_text(encoding="utf-8")))
+    ball.write_text(re.sub(r" \+/- [^\]\n]*\(uniform\)", "",
+                           NATHAN_BALL.read_text(encoding="utf-8")))
     for path in (bat, ball):  # only comments still say +/-
         assert not any("+/-" in line.split("#")[0] for line in path.read_text().splitlines())
     assert stated_inputs(load_bat(bat), [load_ball(ball)]) == []
@@ -192,7 +195,7 @@ def test_a_cor_draw_above_one_is_refused_at_the_cor(tmp_path):
            "  - [71 m/s, 0.50 +/- 0.4 (uniform)]\n")
     old = ("  - [1 m/s, 0.64 +/- 0.032 (uniform)]\n  - [85 ft/s, 0.546 +/- 0.032 (uniform)]\n"
            "  - [71 m/s, 0.50 +/- 0.032 (uniform)]\n")
-    path = edited(tmp_path, BALL, (old, cor))
+    path = edited(tmp_path, NATHAN_BALL, (old, cor))
     inputs = stated_inputs(load_bat(ASH), [load_ball(path)])
     with pytest.raises(InputError) as exc:
         draw(inputs, 1000, seed=3)  # P(no draw above 1) = 0.95^1000 ~ 5e-23
@@ -213,7 +216,7 @@ def test_the_shipped_bands_never_reach_an_impossible_value():
 
 
 def test_sampled_moves_each_input_by_its_draw_times_u():
-    bat, ball = load_bat(ASH), load_ball(BALL)
+    bat, ball = load_bat(ASH), load_ball(NATHAN_BALL)
     inputs = stated_inputs(bat, [ball, ball])  # two protocols sharing the ball: listed once
     z = np.array([1.0, -2.0, 0.5, 1.5, -1.0])  # mass, cg, moi, ball mass, cor
     new_bat, new_balls = sampled(bat, [ball, ball], inputs, z)
@@ -226,14 +229,28 @@ def test_sampled_moves_each_input_by_its_draw_times_u():
     for b in new_balls:  # the same ball file moves the same way under both protocols
         assert b.model.mass == pytest.approx(5.125 * OUNCE + 1.5 * u[3], rel=REL)
         # every COR point moves by -1 of its own u (one source: the lot's liveliness)
-        assert b.model.cor_values == pytest.approx(
+        assert b.model.law.cor_values == pytest.approx(
             [e - 0.032 / SQRT3 for e in (0.64, 0.546, 0.50)], rel=REL)
-        assert b.model.cor_speeds == ball.model.cor_speeds
-        assert b.model.radius == ball.model.radius and b.model.k1 == ball.model.k1
+        assert b.model.law.cor_speeds == ball.model.law.cor_speeds
+        assert b.model.radius == ball.model.radius and b.model.law.k1 == ball.model.law.k1
     assert new_bat.profile == bat.profile and new_bat.length == bat.length
     # the loaded specs are not changed
     assert isinstance(bat.measured.mass, Uncertain) and bat.measured.mass == 0.906
-    assert ball.model.cor_values == (0.64, 0.546, 0.50)
+    assert ball.model.law.cor_values == (0.64, 0.546, 0.50)
+
+
+def test_sampled_moves_a_fitted_ball_along_its_fit():
+    # the shipped viscoelastic ball: a draw of its COR moves the law along the fit's
+    # linearisation (BallFit.moved), the test values themselves are the fit's data and stay
+    ball = load_ball(BALL)
+    inputs = stated_inputs(load_bat(ASH), [ball])
+    z = np.array([0.0, 0.0, 0.0, 0.0, 1.5])  # the COR one and a half u up
+    _, (moved,) = sampled(load_bat(ASH), [ball], inputs, z)
+    assert moved.model.law == ball.fit.moved(1.5)
+    assert moved.model.law != ball.model.law and moved.fit is ball.fit
+    # a livelier lot: a higher rigid-wall COR at the tested speeds
+    speeds = np.array([1.0, 25.908, 58.0])
+    assert np.all(moved.model.cor(speeds) > ball.model.cor(speeds))
 
 
 def test_sampled_moves_wall_stations_together_and_leaves_unstated_ones(tmp_path):

@@ -42,17 +42,30 @@ def _model(session, protocol, ball, engine: str, location_from_tip: float | None
             "barrel_calibrated": bool(run.barrel.calibrated) if run.barrel else None}
 
 
-def _barrel_fits(session, protocol, ball, engine: str, c) -> list[dict[str, float]]:
-    """The barrel calibrated from the hits (hollow bats, flexible engine, a certified value)."""
+def _barrel_fits(session, protocol, ball, engine: str, c) -> tuple[list[dict[str, float]],
+                                                                  list[str]]:
+    """The barrel calibrated from the hits (hollow bats, flexible engine, a certified value),
+    and a warning when no stiffness in the bounds meets the measurement."""
     from dataclasses import asdict
 
     from batcert.engines import get_engine
-    from batcert.lab.calibrate import fit_barrel
+    from batcert.lab.calibrate import calibrate_barrel
+    from batcert.model.calibrate import BARREL_STIFFNESS_BOUNDS
     if c.value is None or engine != "flexible" or c.location is None:
-        return []
-    fits = fit_barrel(session, protocol, ball, get_engine(engine), c.scan[c.location].position,
-                      c.value, c.u_c)
-    return [asdict(f) for f in fits]
+        return [], []
+    cal = calibrate_barrel(session, protocol, ball, get_engine(engine),
+                           c.scan[c.location].position, c.value, c.u_c)
+    warnings = []
+    if not cal.fits and cal.span is not None:
+        lo, hi = BARREL_STIFFNESS_BOUNDS
+        warnings.append(
+            f"the barrel cannot be calibrated from the hits: at the certified location the "
+            f"model's {protocol.metric.upper()} spans {cal.span[0]:.4f} to {cal.span[1]:.4f} for "
+            f"barrel stiffnesses x{lo:g} to x{hi:g}, and the measured value is "
+            f"{c.value:.4f}; the model's hollow bats are livelier than measured ones "
+            "(docs/validation.md, sections 2 and 3), so the difference is the model's, not a "
+            "stiffness")
+    return [asdict(f) for f in cal.fits], warnings
 
 
 def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
@@ -80,6 +93,7 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
         session = load_lab_session(session_path)
     limit = p.limit.max + p.limit.tolerance if p.limit else None
     red, c = certify(session, p, limit)
+    barrel_fits, barrel_warnings = _barrel_fits(session, p, pin.ball, engine, c)
     margin, verdict = decide(c.value, p.limit, guard_band(decision_rule, c.expanded))
     h = session.hits
     tip = session.built.model.length - session.spec.pivot
@@ -116,10 +130,10 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
         conformance_probability=c.conformance, margin=margin, verdict=verdict,
         moi_pivot=session.moi_pivot, moi_source=session.moi_source,
         ball_mass=session.ball.model.mass, pivot=spec.pivot, scan=scan, hits=hits,
-        warnings=c.warnings, inputs=inputs, batcert_version=__version__,
+        warnings=c.warnings + barrel_warnings, inputs=inputs, batcert_version=__version__,
         created=utc_now(),
         lab={k: v for k, v in (spec.lab or {}).items() if v is not None},
-        barrel_fits=_barrel_fits(session, p, pin.ball, engine, c),
+        barrel_fits=barrel_fits,
         model=_model(session, p, pin.ball, engine,
                      c.scan[c.location].from_tip if c.location is not None else None, c.value))
 

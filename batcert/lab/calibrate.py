@@ -7,8 +7,9 @@ The model's metric at one impact point is solved with the protocol's stationary-
 calibration bounds of :mod:`batcert.model.calibrate` (x0.25 to x4); its standard uncertainty is
 the measurement's combined standard uncertainty divided by the slope of the model's metric at
 the root (first-order propagation, GUM 5.1.2). The metric need not be monotonic in the barrel's
-stiffness (BBCOR peaks near a 2 kHz hoop frequency, docs/validation.md): every root in the
-bounds is reported, softest first.
+stiffness: every root in the bounds is reported, softest first. Where there is none, the
+model's metric over the bounds (its range) says how far the model is from the measurement
+(:func:`calibrate_barrel`).
 """
 
 from __future__ import annotations
@@ -42,15 +43,29 @@ def _model_metric(session, protocol, ball, engine, location: float, scale: float
     return float(METRICS[protocol.metric].value(metrics)[0, 0])
 
 
+@dataclass(frozen=True)
+class BarrelCalibration:
+    fits: list[BarrelFit]  # every root in the bounds, softest first; [] when none
+    span: tuple[float, float] | None  # the model's metric over the bounds' grid (min, max)
+
+
 def fit_barrel(session, protocol, ball, engine, location: float, measured: float,
                u_measured: float, points: int = 9) -> list[BarrelFit]:
     """Every barrel stiffness scale in the bounds where the model's metric at ``location`` [m
     from the pivot] equals ``measured``; [] for a solid bat or when none does."""
+    return calibrate_barrel(session, protocol, ball, engine, location, measured, u_measured,
+                            points).fits
+
+
+def calibrate_barrel(session, protocol, ball, engine, location: float, measured: float,
+                     u_measured: float, points: int = 9) -> BarrelCalibration:
+    """:func:`fit_barrel` with the model's range over the bounds (``span``; None for a solid
+    bat), so that a calibration that finds no root can say why."""
     from scipy.optimize import brentq
 
     from batcert.physics import barrel
     if session.built.model.construction != "hollow":
-        return []
+        return BarrelCalibration([], None)
     lo, hi = BARREL_STIFFNESS_BOUNDS
     grid = np.geomspace(lo, hi, points)
 
@@ -69,7 +84,7 @@ def fit_barrel(session, protocol, ball, engine, location: float, measured: float
         u_s = u_measured / abs(slope) if slope else math.inf
         f_hoop = float(hoop) * math.sqrt(s) if hoop else math.nan
         out.append(BarrelFit(s, u_s, f_hoop, f_hoop * 0.5 * u_s / s, slope))
-    return out
+    return BarrelCalibration(out, (min(values) + measured, max(values) + measured))
 
 
 def with_hoop_frequency(bat_text: str, frequency: float, comment: str) -> str:

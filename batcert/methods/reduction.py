@@ -33,7 +33,7 @@ class HitReduction:
 
 
 def reduce_hits(inbound_speed, rebound_speed, impact_location, moi_pivot, ball_mass,
-                ball_cor_at: Callable[[np.ndarray], np.ndarray],
+                ball_cor_at: Callable[[np.ndarray], np.ndarray | float],
                 bat_angular_speed_after=None) -> HitReduction:
     """Reduce hits on a pivoted bat at rest.
 

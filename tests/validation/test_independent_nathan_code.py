@@ -20,6 +20,7 @@ from batcert.engines import ImpactBatch
 from batcert.engines.flexible import FlexibleEngine
 from batcert.engines.rigid import RigidEngine
 from batcert.physics.ball import BallModel
+from batcert.physics.balls import PowerLawHysteresis
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/, for the shared helper
 from r161 import r161_bat  # noqa: E402
@@ -31,8 +32,7 @@ RIGID = np.array([32.05, 37.95, 41.89, 44.72, 46.13, 46.77, 46.81, 46.68, 46.16,
 
 
 def nathan_ball(e0: float) -> BallModel:
-    return BallModel("nathan-2000", 0.145, 0.0366, cor_speeds=(1.0,), cor_values=(e0,),
-                     k1=6.53e7, alpha=1.84)
+    return BallModel("nathan-2000", 0.145, 0.0366, PowerLawHysteresis(6.53e7, 1.84, (1.0,), (e0,)))
 
 
 def game_case(**engine):
@@ -41,8 +41,8 @@ def game_case(**engine):
     bat = r161_bat()
     z0 = bat.balance_point - 24.0 / 51.0
     batch = ImpactBatch(Z_CM / 100.0 - z0, -40.0, 51.0)
-    flex = FlexibleEngine(contact_patch=False, **engine).solve(bat, nathan_ball(0.50), z0, batch,
-                                                               support="free")
+    flex = FlexibleEngine(contact_patch=False, contact_surface="flat", **engine).solve(
+        bat, nathan_ball(0.50), z0, batch, support="free")
     rigid = RigidEngine().solve(bat, nathan_ball(0.50), z0, batch, support="free")
     return flex.exit_speed, rigid.exit_speed
 
@@ -81,8 +81,8 @@ def test_stationary_bat_cannon_case_peak():
     # within the same 0.4 % as the game case.
     bat = r161_bat()
     z = np.arange(0.60, 0.76, 0.005)
-    out = FlexibleEngine(contact_patch=False).solve(bat, nathan_ball(0.53), 0.0,
-                                                    ImpactBatch(z, -58.0, 0.0), support="free")
+    out = FlexibleEngine(contact_patch=False, contact_surface="flat").solve(
+        bat, nathan_ball(0.53), 0.0, ImpactBatch(z, -58.0, 0.0), support="free")
     i = int(np.argmax(out.exit_speed))
     assert z[i] == pytest.approx(0.685, abs=0.01)
     assert out.exit_speed[i] == pytest.approx(14.52, rel=0.004)

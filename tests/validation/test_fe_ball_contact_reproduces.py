@@ -1,0 +1,50 @@
+"""The independent 3-D finite-element reference for the ball's contact footprint on a barrel
+still reproduces its recorded numbers.
+
+The reference (``scripts/fe_ball_contact.py``, recorded in ``data/fe_ball_contact.json``):
+- a linear-elastic sphere, R_b = 36.9 mm, pushed by a uniform body force (the quasi-static
+  analogue of an impact's deceleration) onto a rigid cylinder (2 5/8 in and 2 1/4 in barrels) or
+  a rigid flat; the compression is the sphere's centre-of-mass approach;
+- frictionless node-to-surface contact, solved by an active-set (Signorini) iteration;
+- 27-node isoparametric hexahedra, graded toward the contact, quarter model, meshes M1 and M2;
+- the footprint's equivalent semi-axes from the contact pressure's second moments
+  (``sqrt(5 <x^2>)`` along the bat, ``sqrt(5 <s^2>)`` around it), with Hertz's ellipse beside
+  them, and the pressure's marginals.
+It uses nothing of batcert, so it can check batcert's footprint rule
+(``batcert/physics/balls/footprint.py``).
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+DATA = json.loads((Path(__file__).resolve().parent / "data" / "fe_ball_contact.json").read_text())
+
+
+@pytest.mark.slow
+def test_the_fe_reference_reproduces(tmp_path):
+    # Re-run the coarse mesh of --quick (the 2 5/8 in barrel, u/R_b = 0.02 and 0.07, nu = 0.3;
+    # ~15 s) and check it still gives the recorded numbers. Same mesh, same direct solver, and the
+    # contact's active set is a discrete fixed point, so only rounding separates the runs (the
+    # order of sums in BLAS and SuperLU, the number of processes): 1e-12 or so. A change to the
+    # model (mesh, material, contact or its solution, the measures of the footprint) moves these
+    # numbers by 1e-4 or more (the coarse mesh differs from M1 by 1e-3), so 1e-6 relative tells
+    # the two apart. The contact-node counts must agree exactly.
+    pytest.importorskip("skfem")
+    import subprocess
+
+    out = tmp_path / "quick.json"
+    script = Path(__file__).resolve().parents[2] / "scripts" / "fe_ball_contact.py"
+    subprocess.run([sys.executable, str(script), "--quick", "--out", str(out)],
+                   check=True, capture_output=True, timeout=600)
+    run = json.loads(out.read_text())["quick"]["rows"]
+    rec = DATA["quick"]["rows"]
+    assert [r["u_over_R"] for r in run] == [r["u_over_R"] for r in rec]
+    for r, ref in zip(run, rec, strict=True):
+        assert r["n_contact_nodes_quarter"] == ref["n_contact_nodes_quarter"], r["u_over_R"]
+        for name in ("F_N", "a_eq_mm", "b_eq_mm", "x_max_mm", "s_max_mm"):
+            assert r[name] == pytest.approx(ref[name], rel=1e-6), (r["u_over_R"], name)

@@ -1,5 +1,7 @@
 """Protocol runner (batcert.runner): conditions, impact-location rules, sweet-spot search,
-aggregation and verdicts, all with the rigid engine so that every number has a closed form."""
+aggregation and verdicts, all with the rigid engine and a ball of Nathan's law (batcert 0.2's
+collegiate ball, tests/fixtures/good/ball-nathan-law.yaml) so that every number has a closed
+form."""
 
 from __future__ import annotations
 
@@ -19,6 +21,7 @@ from batcert.runner.conditions import conditions_from_spec
 from batcert.runner.runner import run_protocol
 
 REPO = Path(__file__).resolve().parents[2]
+NATHAN_LAW_BALL = REPO / "tests" / "fixtures" / "good" / "ball-nathan-law.yaml"
 IN = 0.0254  # [m]
 MPH = 0.44704  # [m/s]
 
@@ -33,12 +36,20 @@ def ash():
 @pytest.fixture
 def protocol(tmp_path):
     """Write a protocol YAML (header added) and load it with its ball."""
-    def make(body: str, ball: str = "collegiate-baseball", name: str = "p"):
+    def make(body: str, ball: str = str(NATHAN_LAW_BALL), name: str = "p"):
         path = tmp_path / f"{name}.yaml"
         path.write_text(f"id: {name}\ntitle: test\nreference: test\nversion: '1'\nball: {ball}\n"
                         + textwrap.dedent(body), encoding="utf-8")
         return load_protocol_any(str(path))
     return make
+
+
+def closed_form(inputs):
+    """A shipped protocol with the ball of Nathan's law (module notes)."""
+    import dataclasses
+
+    from batcert.specs.ball import load_ball
+    return dataclasses.replace(inputs, ball=load_ball(NATHAN_LAW_BALL))
 
 
 def run(bat, inputs) -> RunResult:
@@ -59,7 +70,7 @@ def dense_exit_speed(bat, inputs, cond_index, r):
 def test_matched_relative_speed(ash):
     """Smith 2001 proposal: the moving body makes the relative speed 60 m/s at the impact point,
     w1 = (V - pitch) / r at every location."""
-    inputs = load_protocol_any("proposed")
+    inputs = closed_form(load_protocol_any("proposed"))
     res = run(ash, inputs)
     pitch = {"stationary-bat": 60.0, "stationary-ball": 0.0, "pitched-and-swung": 31.0}
     for c in res.conditions:
@@ -79,7 +90,7 @@ def test_matched_relative_speed(ash):
 def test_bat_speed_from_tip_sets_w1(ash):
     """NCAA BESR: 66 mph measured 6 in from the tip, pivot 6 in from the knob:
     w1 = v / (L - 6 in - pivot)."""
-    res = run(ash, load_protocol_any("ncaa-besr"))
+    res = run(ash, closed_form(load_protocol_any("ncaa-besr")))
     (c,) = res.conditions
     assert c.bat_angular_speed == pytest.approx(66 * MPH / (0.860 - 6 * IN - 6 * IN), rel=1e-12)
     assert c.pitch_speed == pytest.approx(-70 * MPH, rel=1e-12)
@@ -134,7 +145,7 @@ def test_resolution_is_honoured(ash, protocol):
 
 def test_cop_rule_uses_eq4(ash):
     """ASTM-style: impact at the centre of percussion q = I / (M rbar) about the protocol pivot."""
-    res = run(ash, load_protocol_any("astm-bpf"))  # pivot 150 mm, as measured
+    res = run(ash, closed_form(load_protocol_any("astm-bpf")))  # pivot 150 mm, as measured
     (c,) = res.conditions
     assert c.impact_location == pytest.approx(0.209 / (0.906 * 0.429), rel=1e-9)
     assert res.mass_properties.cop == pytest.approx(c.impact_location, rel=1e-12)
@@ -270,7 +281,7 @@ def test_max_metric(ash, protocol):
 
 
 def test_sweep_spans_the_window(ash):
-    res = run(ash, load_protocol_any("ncaa-besr"))
+    res = run(ash, closed_form(load_protocol_any("ncaa-besr")))
     (c,) = res.conditions
     grid = np.array(c.sweep.impact_location)
     pivot = 6 * IN
@@ -282,7 +293,7 @@ def test_sweep_spans_the_window(ash):
 
 def test_besr_conditions_consistent(ash):
     """Every per-condition quantity agrees with the closed forms at the located point."""
-    res = run(ash, load_protocol_any("ncaa-besr"))
+    res = run(ash, closed_form(load_protocol_any("ncaa-besr")))
     (c,) = res.conditions
     moi, m = res.mass_properties.moi_pivot, 5.125 * 0.028349523125
     r, vp, w1, vb, w2 = (c.impact_location, c.pitch_speed, c.bat_angular_speed, c.exit_speed,
@@ -299,9 +310,10 @@ def test_besr_conditions_consistent(ash):
 
 def test_rigid_bpf_warning(ash):
     # A rigid bat's BPF only reflects the ball's smaller loss when it is squeezed less against a
-    # recoiling bat: e = e_b(v / sqrt(1 + k)) over e_b(v) (physics/contact.py), slightly above 1
-    # for a ball whose COR falls with speed; the engine says BPF needs the flexible engine.
-    inputs = load_protocol_any("astm-bpf")
+    # recoiling bat: e = e_b(v / sqrt(1 + k)) over e_b(v) for Nathan's law
+    # (physics/balls/hysteresis.py; the viscoelastic ball likewise loses less when squeezed
+    # less), slightly above 1 for a ball whose COR falls with speed; the engine says BPF needs the flexible engine.
+    inputs = closed_form(load_protocol_any("astm-bpf"))
     res = run(ash, inputs)
     c = res.conditions[0]
     k = inputs.ball.model.mass * c.impact_location**2 / ash.model.moi_about(0.150)
@@ -320,7 +332,7 @@ def test_window_beyond_the_pivot_is_refused(ash, protocol):
 
 
 def test_results_round_trip(ash):
-    res = run(ash, load_protocol_any("proposed"))
+    res = run(ash, closed_form(load_protocol_any("proposed")))
     again = RunResult.from_dict(res.to_dict())
     assert again == res
     assert math.isfinite(again.value)
@@ -332,7 +344,7 @@ def test_flat_metric_uses_the_sweet_spot_with_a_warning():
     # stationary bat: BBCOR equals that COR at every location (Smith 2001 Eq. 3 with Eq. 1), so
     # max-metric has no maximum; the runner says so and uses the sweet spot.
     from batcert.engines.rigid import RigidEngine
-    inputs = load_protocol_any("ncaa-bbcor")
+    inputs = closed_form(load_protocol_any("ncaa-bbcor"))
     result = run_protocol(load_bat_any("ash-34").built, inputs.protocol, inputs.ball,
                           RigidEngine(ball_loss="relative-speed"))
     c = result.conditions[0]

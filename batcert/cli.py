@@ -742,6 +742,8 @@ def reduce(session, protocol, bat, decision_rule, calibrated_bat, engine, out_di
     fmts = _formats(formats)
     target = _report_dir(out_dir, no_reports, as_json)
     _check_figures_dir(figures_dir)
+    if calibrated_bat is not None:  # before any work: never an input, never a device
+        _check_calibration_target(calibrated_bat, _session_inputs(session, bat))
     result = run_reduce(session, protocol, decision_rule, engine, bat)
     _deliver(result, console.lab_summary, target, fmts, as_json)
     if calibrated_bat is not None:
@@ -750,17 +752,47 @@ def reduce(session, protocol, bat, decision_rule, calibrated_bat, engine, out_di
     sys.exit(0 if result.verdict in ("pass", None) and result.value is not None else 1)
 
 
+def _session_inputs(session: str, bat: str | None) -> list[Path]:
+    """The files a reduction will read, as far as they can be known before it runs: the
+    session (or bare hits CSV), its hits CSV and its bat file. A session that cannot be read
+    here is left to the reduction to report."""
+    from batcert.errors import InputError, UsageProblem
+    from batcert.specs.resolve import resolve
+    paths = [Path(session)]
+    try:
+        if Path(session).suffix.lower() == ".csv":
+            if bat is not None:
+                paths.append(Path(resolve("bat", bat)))
+        else:
+            from batcert.specs.hits import load_session
+            spec = load_session(session)
+            here = Path(session)
+            paths.append(here.parent / spec.hits)
+            paths.append(Path(resolve("bat", spec.bat, relative_to=here)))
+    except (InputError, UsageProblem, OSError, ValueError):
+        pass
+    return paths
+
+
+def _check_calibration_target(target: Path, inputs: list[Path]) -> None:
+    from batcert.reports.write import check_output_file
+    check_output_file(target, inputs, "the calibrated bat")
+
+
 def _write_calibration(result, session: str, target: Path) -> None:
     """The bat file with the fitted barrel (the softest fit when there are several), written
-    atomically and read back to check it is a valid bat file."""
+    atomically and read back to check it is a valid bat file; the target is checked again
+    against every input the reduction read (the ball and protocol files too)."""
     from batcert.commands.reduce import calibrated_bat_text
     from batcert.errors import UsageProblem
-    from batcert.reports.write import atomic_write_text, check_output_dir
+    from batcert.reports.write import atomic_write_text
+    from batcert.specs.resolve import resolve_display
     try:
         text = calibrated_bat_text(result, session)
     except ValueError as exc:
         raise UsageProblem(f"--write-calibration: {exc}") from None
-    check_output_dir(target.parent if str(target.parent) else Path("."))
+    _check_calibration_target(target, [*_session_inputs(session, None),
+                                       *(resolve_display(i["path"]) for i in result.inputs)])
     atomic_write_text(target, text)
     console.note(f"wrote the calibrated bat to {target}")
 

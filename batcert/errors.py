@@ -106,6 +106,6 @@ class OutputError(OSError):
     """Reports (or a sweep's journal) cannot be written where asked (permissions, a full disk,
     a path that is a file or too long): an environment problem, not bad input (exit 4)."""
 
-    def __init__(self, where: Path, reason: str):
-        super().__init__(f"cannot write reports to {where}: {reason}")
+    def __init__(self, where: Path, reason: str, what: str = "reports"):
+        super().__init__(f"cannot write {what} to {where}: {reason}")
         self.where, self.reason = where, reason

@@ -182,6 +182,35 @@ def check_output_dir(directory: Path) -> None:
         raise OutputError(directory, _reason(exc)) from None
 
 
+def check_output_file(path: Path, inputs: list[Path], what: str) -> None:
+    """Make sure one file (``what``, for the message) can be written at ``path`` without
+    harm, before any work: raise :class:`OutputError` if it exists and is not a regular file
+    (a directory, a device, a FIFO), if it is one of the run's ``inputs`` (compared as files,
+    through links: batcert never writes over an input), or if its folder refuses a new file
+    (:func:`check_output_dir`)."""
+    path = Path(path)
+    try:
+        if path.exists() or path.is_symlink():
+            if not path.is_file():
+                raise OutputError(path, "it exists and is not a regular file", what)
+            for source in inputs:
+                try:
+                    same = Path(source).exists() and os.path.samefile(path, source)
+                except OSError:
+                    same = False
+                if same:
+                    raise OutputError(path, f"it is an input of this run ({source}); batcert "
+                                      "never writes over an input: give a new file name", what)
+    except OutputError:
+        raise
+    except OSError as exc:
+        raise OutputError(path, _reason(exc), what) from None
+    try:
+        check_output_dir(path.parent if str(path.parent) else Path("."))
+    except OutputError as exc:
+        raise OutputError(path, exc.reason, what) from None
+
+
 def write_texts(texts: dict[Path, str | bytes]) -> list[Path]:
     """Write already-rendered reports (text, or bytes such as a PNG) as one set (module
     notes). Parent directories are created. Raises :class:`OutputError`, leaving the previous set as it was."""

@@ -84,6 +84,18 @@ def display_path(path: str | Path) -> str:
     return str(path) if sub is None else f"shipped:{sub}/{p.name}"
 
 
+def resolve_display(shown: str) -> Path:
+    """The file behind a :func:`display_path` name: ``shipped:SUB/NAME`` in the first shipped
+    folder ``SUB`` that holds it, else the path itself."""
+    if not shown.startswith("shipped:"):
+        return Path(shown)
+    sub, _, name = shown[len("shipped:"):].rpartition("/")
+    for base, folder in _shipped_dirs().items():
+        if folder == sub and (base / name).is_file():
+            return base / name
+    return Path(shown)
+
+
 @functools.lru_cache(maxsize=1)
 def _shipped_dirs() -> dict[Path, str]:
     """The resolved folders that shipped files live in, each with its name in

@@ -235,18 +235,22 @@ def _warnings(warnings: Sequence[str]) -> None:
 
 
 def run_summary(result, paths: Sequence[Any]) -> None:
-    """Terminal view of a :class:`~batcert.results.run.RunResult`."""
+    """Terminal view of a :class:`~batcert.results.run.RunResult`: a model prediction, said
+    so on its first line ("predicted PASS"), with the model's known offset for the metric."""
     m = result.metric
     limit = "" if result.limit is None else (
         f" against limit {fmt.metric_value(result.limit, m)}"
         + (f" + {result.tolerance:g}" if result.tolerance else "")
         + f", margin {fmt.metric_value(result.margin, m, signed_=True)}")
-    _emit([_verdict(result.verdict),
+    label, style = _verdict(result.verdict)
+    _emit([(f"predicted {label}" if result.verdict else label, style),
            (f"  {result.bat} \u2014 {result.protocol} ({result.protocol_title})", "")])
     n = len(result.conditions)
-    _emit([(f"  {fmt.metric_word(m)} ({fmt.aggregate_word(result.aggregate)} of {n} "
+    _emit([(f"  predicted {fmt.metric_word(m)} ({fmt.aggregate_word(result.aggregate)} of {n} "
              f"condition{'s' if n > 1 else ''}) = {fmt.metric_value(result.value, m)}"
-             f"{limit}   [engine {result.engine}, {result.support}]", "")])
+             f"{limit}   [model: engine {result.engine}, {result.support}]", "")])
+    if result.model_offset and not _Settings.quiet:
+        _emit([(f"  known offset of the model: {result.model_offset}", "")])
     t = Table(["condition", "pitch\n[m/s]", "bat w1\n[rad/s]", "impact\n[m from pivot]",
                "COP\n[m]", "sweet spot\n[m]", "exit speed\n[m/s (mph)]", "COR", "BPF", "BESR",
                "BBCOR", "e_A"], numeric=[False] + [True] * 11)

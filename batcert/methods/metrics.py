@@ -70,17 +70,27 @@ class Metric:
     value: Callable[[ImpactMetrics], np.ndarray]
     unit: str = ""  # SI unit of the value; "" for dimensionless metrics
     digits: int = 4  # decimals shown for the SI value (exit speed: m/s)
+    # what docs/validation.md measures of the model's offset from bench results for this
+    # metric, stated on every predicted result ("" where no published level anchors it)
+    model_offset: str = ""
 
 
 METRICS: dict[str, Metric] = {m.name: m for m in (
     Metric("exit-speed", "exit speed", "Ball speed after impact, v_b.", lambda m: m.exit_speed,
            "m/s", 2),
     Metric("besr", "BESR", "NCAA ball exit speed ratio, Smith 2001 Eq. 2 (assumes w2 = w1).",
-           lambda m: m.besr),
+           lambda m: m.besr, model_offset=(
+               "the model puts a 34 in ash bat at BESR 0.762 (101.6 mph) where the 97 mph cap "
+               "(0.728) was set from such bats: about +0.03 for wood, and alloy bats 0.04 above "
+               "ash (docs/validation.md, section 3)")),
     Metric("bpf", "BPF", "Bat performance factor e / e_b, Smith 2001 Eq. 5 (w2 from Eq. 1).",
            lambda m: m.bpf),
     Metric("bbcor", "BBCOR", "Ball-bat COR from the collision efficiency, e_A (1 + k) + k "
-           "(ASTM F2219, NCAA).", lambda m: m.bbcor),
+           "(ASTM F2219, NCAA).", lambda m: m.bbcor, model_offset=(
+               "the model puts wood bats 0.04-0.05 above measured wood BBCOR (NCAA's best "
+               "wood is just below 0.50) and typical alloy bats a further 0.06-0.07 above "
+               "wood, where certified alloy bats measure at wood level (docs/validation.md, "
+               "sections 2 and 3)")),
     Metric("collision-efficiency", "collision efficiency e_A",
            "e_A = (v_b - v_bat) / (v_pitch + v_bat) (ASTM F2219).",
            lambda m: m.collision_efficiency),

@@ -1,4 +1,5 @@
-"""The certificate of one protocol run: everything its Markdown and HTML show, formatted."""
+"""The report of one protocol run, a model prediction (not a certificate: only `reduce`, from
+measured hits, makes one): everything its Markdown and HTML show, formatted."""
 
 from __future__ import annotations
 
@@ -18,25 +19,36 @@ def verdict(result: RunResult) -> dict[str, Any]:
     if result.verdict is None or result.limit is None:
         return {"label": "NO LIMIT", "css": "none", "value": value, "limit": None,
                 "tolerance": None, "margin": None,
-                "sentence": f"{name} {value}; the protocol sets no limit.",
-                "basis": basis(result)}
+                "sentence": f"Predicted {name} {value}; the protocol sets no limit.",
+                "basis": basis(result), "offset": offset(result)}
     limit, tol = fmt.metric_value(result.limit, m), fmt.metric_value(result.tolerance, m)
     margin = fmt.metric_value(result.margin, m, signed_=True)
     passed = result.verdict.lower() == "pass"
     relation = "\u2264" if passed else ">"
     tol_text = f" + tolerance {tol}" if result.tolerance else ""
     return {
-        "label": "PASS" if passed else "FAIL", "css": "pass" if passed else "fail",
+        "label": "PREDICTED PASS" if passed else "PREDICTED FAIL",
+        "css": "pass" if passed else "fail",
         "value": value, "limit": limit, "tolerance": tol, "margin": margin,
-        "sentence": f"{name} {value} {relation} limit {limit}{tol_text}; margin {margin}.",
-        "basis": basis(result),
+        "sentence": f"Predicted {name} {value} {relation} limit {limit}{tol_text}; "
+                    f"margin {margin}.",
+        "basis": basis(result), "offset": offset(result),
     }
+
+
+TITLE = "Predicted bat performance"  # a run's report: a model prediction, never a certificate
 
 
 def basis(result: RunResult) -> str:
     """Whether the values were measured or computed, and how."""
-    return (f"Values computed by batcert's {result.engine} model of the bat from its "
-            "specification (not measured on a bench).")
+    return (f"A model prediction, not a certificate: values computed by batcert's "
+            f"{result.engine} model of the bat from its specification, not measured on a "
+            "bench (a certificate comes from measured hits: batcert reduce).")
+
+
+def offset(result: RunResult) -> str:
+    """The model's known offset for the metric (docs/validation.md), as a sentence, or ""."""
+    return f"Known offset of the model: {result.model_offset}." if result.model_offset else ""
 
 
 def header_rows(result: RunResult) -> list[tuple[str, str]]:
@@ -231,6 +243,7 @@ def run_view(result: RunResult) -> dict[str, Any]:
     return {
         "result": result,
         "title": f"{result.bat} \u2014 {result.protocol}",
+        "kind": TITLE,
         "metric_name": fmt.metric_name(result.metric),
         "verdict": shown,
         "barrel_note": barrel_note(result),

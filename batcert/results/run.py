@@ -172,3 +172,8 @@ class RunResult(Serialisable):
     extras: dict[str, Any] = field(default_factory=dict)  # the bat's dynamics (modes, barrel)
     barrel: BarrelRange | None = None  # hollow bats with the flexible engine
     uncertainty: PredictedUncertainty | None = None  # with `run --uncertainty N`
+    # "predicted": computed by the model from the bat's specification, not measured (only
+    # `reduce`, from measured hits, makes a certificate); model_offset: what docs/validation.md
+    # measures of the model's offset for this metric ("" where nothing anchors it)
+    statement: str = "predicted"
+    model_offset: str = ""

@@ -337,7 +337,7 @@ def protocol_steps(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engi
         inputs=inputs, batcert_version=__version__, created=created,
         warnings=(_warnings(p, conds, choice, engine) + _barrel_warning(barrel, metric.display)
                   + _wall_warning(conds, diag)),
-        extras=bat_dynamics(built, p.pivot), barrel=barrel)
+        extras=bat_dynamics(built, p.pivot), barrel=barrel, model_offset=metric.model_offset)
 
 
 def _final_steps(bench: Bench, conds: list[Condition], locations: np.ndarray, metric,

@@ -149,11 +149,14 @@ def test_self_contained(variant, request):
 
 def test_pass_verdict(passing):
     text = visible_text(passing)
-    assert '<div class="verdict verdict-pass" role="status">PASS</div>' in passing
+    # a run's report is a model prediction, and says so: never a bare PASS (issue 24)
+    assert '<div class="verdict verdict-pass" role="status">PREDICTED PASS</div>' in passing
+    assert "Predicted bat performance (model prediction, not a certificate)" in text
     assert "FAIL" not in text
-    assert unescape(re.search(r"<title>(.*?)</title>", passing).group(1)).startswith("PASS")
+    assert unescape(re.search(r"<title>(.*?)</title>", passing).group(1)).startswith(
+        "PREDICTED PASS")
     margin = signed(sample_result(limit=1.05).margin)
-    assert f"BPF {VALUE} \u2264 limit 1.0500 + tolerance 0.0050; margin {margin}." in text
+    assert f"Predicted BPF {VALUE} \u2264 limit 1.0500 + tolerance 0.0050; margin {margin}." in text
     for label, value in [("BPF", VALUE), ("Limit", "1.0500"), ("Tolerance", "0.0050"),
                          ("Margin", margin)]:
         assert re.search(rf"<dt>{label}</dt><dd><span class=\"si\">{re.escape(value)}</span>",
@@ -162,7 +165,7 @@ def test_pass_verdict(passing):
 
 def test_fail_verdict(failing):
     text = visible_text(failing)
-    assert '<div class="verdict verdict-fail" role="status">FAIL</div>' in failing
+    assert '<div class="verdict verdict-fail" role="status">PREDICTED FAIL</div>' in failing
     assert "PASS" not in text
     result = sample_result(limit=0.95)
     assert result.verdict == "fail"
@@ -175,7 +178,7 @@ def test_no_limit(no_limit):
     text = visible_text(no_limit)
     assert '<div class="verdict verdict-none" role="status">NO LIMIT</div>' in no_limit
     assert "PASS" not in text and "FAIL" not in text
-    assert f"BPF {VALUE}; the protocol sets no limit." in text
+    assert f"Predicted BPF {VALUE}; the protocol sets no limit." in text
     assert "<dt>Limit</dt>" not in no_limit and "<dt>Margin</dt>" not in no_limit
 
 

@@ -47,9 +47,11 @@ def md() -> str:
 
 
 def test_title_and_verdict_pass(md):
-    assert md.startswith("# Bat certification report: Ash 34 in (Smith 2001)\n")
+    # a model prediction, titled as one (issue 24); a certificate is reduce's, from hits
+    assert md.startswith("# Predicted bat performance: Ash 34 in (Smith 2001)\n")
+    assert "A model prediction, not a certificate" in md
     margin = sample_result(limit=1.05).margin
-    assert f"**Verdict: PASS** \u2014 BPF {VALUE} \u2264 limit 1.0500 + tolerance 0.0050; " \
+    assert f"**Verdict: PREDICTED PASS** \u2014 Predicted BPF {VALUE} \u2264 limit 1.0500 + tolerance 0.0050; " \
            f"margin {signed(margin)}." in md
 
 
@@ -57,14 +59,15 @@ def test_verdict_fail():
     result = sample_result(limit=0.95)
     md = render_markdown(result)
     # ">" is escaped so that it cannot start HTML; it renders as ">"
-    assert f"**Verdict: FAIL** \u2014 BPF {VALUE} \\> limit 0.9500 + tolerance 0.0050; " \
+    assert f"**Verdict: PREDICTED FAIL** \u2014 Predicted BPF {VALUE} \\> limit 0.9500 + tolerance 0.0050; " \
            f"margin {signed(result.margin)}." in md
     assert "PASS" not in md
 
 
 def test_verdict_no_limit():
     md = render_markdown(sample_result(limit=None))
-    assert f"**Verdict: NO LIMIT** \u2014 BPF {VALUE}; the protocol sets no limit." in md
+    assert f"**Verdict: NO LIMIT** \u2014 Predicted BPF {VALUE}; the protocol sets no limit." \
+        in md
     assert "PASS" not in md and "FAIL" not in md
     assert "margin" not in md
 
@@ -145,7 +148,7 @@ def test_special_characters_do_not_break_tables():
     md = render_markdown(result)
     headers, rows = table_after(md, "| Condition | Set-up |")
     assert rows[0][0] == r"a \| b \*c\* \`d\`"
-    assert md.startswith("# Bat certification report: \\# not a heading \\<b\\>\n")
+    assert md.startswith("# Predicted bat performance: \\# not a heading \\<b\\>\n")
 
 
 def test_helpers():

@@ -1,0 +1,38 @@
+"""A model prediction is not a certificate (issue 24): `run` says "predicted" on its verdict in
+the terminal, the reports and the JSON, with the model's known offset for the metric from
+docs/validation.md; only `reduce`, from measured hits, issues a certificate."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from batcert.methods.metrics import METRICS
+
+LAB = Path(__file__).resolve().parents[2] / "examples" / "lab"
+
+
+def test_run_says_predicted_and_states_the_models_offset(batcert_cli):
+    res = batcert_cli("run", "ash-34", "-p", "ncaa-bbcor", "--no-reports")
+    first, second, third = res.stdout.splitlines()[:3]
+    assert first.startswith("predicted FAIL  Ash 34 in")  # wood fails by model: said as such
+    assert second.lstrip().startswith("predicted BBCOR") and "[model: engine flexible" in second
+    assert third.strip() == f"known offset of the model: {METRICS['bbcor'].model_offset}"
+
+
+def test_the_json_names_its_statement_and_offset(batcert_cli):
+    data = json.loads(batcert_cli("run", "ash-34", "-p", "ncaa-besr", "--json").stdout)
+    data = data["results"][0]
+    assert data["statement"] == "predicted"
+    assert data["model_offset"] == METRICS["besr"].model_offset != ""
+    # a metric no published level anchors carries no offset
+    data = json.loads(batcert_cli("run", "ash-34", "-p", "proposed", "--json").stdout)
+    data = data["results"][0]
+    assert data["statement"] == "predicted" and data["model_offset"] == ""
+
+
+def test_a_lab_certificate_stays_a_measured_verdict(batcert_cli):
+    res = batcert_cli("reduce", LAB / "synthetic-exact.yaml", "-p", "ncaa-bbcor",
+                      "--no-reports")
+    assert res.stdout.splitlines()[0].startswith("PASS  Lab certificate:")
+    assert "predicted" not in res.stdout.splitlines()[0]

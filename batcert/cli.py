@@ -633,7 +633,7 @@ def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine
           formats, no_reports, as_json):
     """Run BAT under one protocol for every value of one or two parameters (a grid), and
     report every metric, the sweet spot and the COP against them."""
-    from batcert.commands.sweep import finish_journal, journal_path, plan_sweep, run_sweep
+    from batcert.commands.sweep import finish_journal, journal_for, plan_sweep, run_sweep
     from batcert.reports.write import variants_stem
     fmts = _formats(formats)
     clock = _Clock()
@@ -646,9 +646,12 @@ def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine
     clock.lap("inputs")
     journal = None
     if target is not None:
-        journal = journal_path(target, variants_stem(plan.base.protocol.id,
-                                                     [a.name for a in plan.axes],
-                                                     plan.base.bat.path))
+        journal = journal_for(target, variants_stem(plan.base.protocol.id,
+                                                    [a.name for a in plan.axes],
+                                                    plan.base.bat.path), plan)
+        if resume and not journal.exists():
+            console.note(f"no journal of this sweep in {target} (same inputs, values, engine "
+                         "and batcert version): it runs from the beginning")
     with console.progress("sweeping") as bar:
         result = run_sweep(plan, journal, resume, workers, scheduler, _counter(bar))
     clock.lap(f"engine ({len(result.points)} variants)")

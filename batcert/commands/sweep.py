@@ -46,8 +46,17 @@ def plan_sweep(bat: str, protocol: str, varies: list[str], engine: str = "flexib
     return plan
 
 
-def journal_path(out_dir: Path, stem: str) -> Path:
-    return out_dir / f"{stem}.partial.jsonl"
+def journal_for(out_dir: Path, stem: str, plan: Plan) -> Path:
+    """The journal of ``plan``'s sweep in ``out_dir`` beside its reports named ``stem``
+    (:func:`journal_path`)."""
+    return journal_path(out_dir, stem, sweep_key(plan))
+
+
+def journal_path(out_dir: Path, stem: str, key: str) -> Path:
+    """Where a sweep keeps its journal in ``out_dir``: named by the report's stem and the
+    sweep's key (:func:`~batcert.sweeps.execute.sweep_key`), so that two sweeps of the same bat,
+    protocol and parameters over other values never share one."""
+    return out_dir / f"{stem}.{key[:16]}.partial.jsonl"
 
 
 def run_sweep(plan: Plan, journal_at: Path | None = None, resume: bool = False,

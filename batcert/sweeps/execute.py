@@ -26,48 +26,78 @@ class SchedulerUnavailable(UsageProblem):
     """``--scheduler`` without dask.distributed installed, or a scheduler that cannot be reached."""
 
 
+class JournalRefused(UsageProblem):
+    """A journal that cannot prove which sweep its rows belong to (another sweep's, or damaged
+    anywhere but a last line cut short): refused, never read in part."""
+
+
 @dataclass
 class Journal:
     """A sweep's finished chunks on disk: a header line (the sweep's key and timestamp), then
-    one JSON line per finished chunk, each flushed and synced as it is written. A line cut
-    short by an interruption is ignored on resuming."""
+    one JSON line per finished chunk, each carrying the sweep's key (so that every row proves
+    which sweep it belongs to) and flushed and synced as it is written. Only a last line cut
+    short by an interruption is passed over on resuming; anything else that is not a line of
+    this sweep refuses the whole journal (:class:`JournalRefused`)."""
 
     path: Path
     key: str
     created: str
 
     def load(self) -> dict[int, list[Row]]:
-        """The chunks already finished, by index; refuses a journal of another sweep."""
+        """The chunks already finished, by index (module notes)."""
         try:
-            lines = self.path.read_text(encoding="utf-8").splitlines()
+            text = self.path.read_text(encoding="utf-8")
         except FileNotFoundError:
             return {}
+        except UnicodeDecodeError:
+            raise self._refused(None, "it is not a text file") from None
         except OSError as exc:
             raise OutputError(self.path, exc.strerror or str(exc)) from None
+        lines = text.splitlines()
+        cut_short = bool(text) and not text.endswith("\n")
         done: dict[int, list[Row]] = {}
         for k, line in enumerate(lines):
             try:
                 entry = json.loads(line)
             except json.JSONDecodeError:
-                continue  # a line cut short by the interruption
+                if k == len(lines) - 1 and cut_short and k > 0:
+                    continue  # the chunk being written when the sweep was stopped
+                raise self._refused(k + 1, "the line is damaged") from None
+            if not isinstance(entry, dict) or entry.get("key") != self.key:
+                raise self._refused(k + 1, "the line is not of this sweep (other inputs, "
+                                    "values, engine or batcert version)" if k else
+                                    "it holds a sweep with other inputs, values, engine or "
+                                    "batcert version")
             if k == 0:
-                if entry.get("key") != self.key:
-                    raise UsageProblem(f"{self.path} holds a sweep with other inputs, "
-                                       "parameters or engine; remove it or run without --resume")
+                if not isinstance(entry.get("created"), str):
+                    raise self._refused(1, "the header has no creation time")
                 self.created = entry["created"]
                 continue
-            done[int(entry["chunk"])] = entry["rows"]
+            chunk, rows = entry.get("chunk"), entry.get("rows")
+            if (not isinstance(chunk, int) or isinstance(chunk, bool) or chunk < 0
+                    or not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows)):
+                raise self._refused(k + 1, "the line is not a finished chunk")
+            if chunk in done and done[chunk] != rows:
+                raise self._refused(k + 1, f"chunk {chunk} is recorded twice, differently")
+            done[chunk] = rows
         return done
+
+    def _refused(self, line: int | None, why: str) -> JournalRefused:
+        where = f"{self.path}" + (f", line {line}" if line else "")
+        return JournalRefused(f"{where}: {why}; the journal is not used. Remove it, or run "
+                              "without --resume to start this sweep afresh")
 
     def start(self, done: dict[int, list[Row]]) -> None:
         """Write the header and the chunks kept (a fresh journal when ``done`` is empty)."""
         lines = [json.dumps({"key": self.key, "created": self.created})]
-        lines += [json.dumps({"chunk": k, "rows": rows}, allow_nan=False)
-                  for k, rows in sorted(done.items())]
+        lines += [self._line(k, rows) for k, rows in sorted(done.items())]
         self._write("w", "\n".join(lines) + "\n")
 
     def add(self, chunk: int, rows: list[Row]) -> None:
-        self._write("a", json.dumps({"chunk": chunk, "rows": rows}, allow_nan=False) + "\n")
+        self._write("a", self._line(chunk, rows) + "\n")
+
+    def _line(self, chunk: int, rows: list[Row]) -> str:
+        return json.dumps({"key": self.key, "chunk": chunk, "rows": rows}, allow_nan=False)
 
     def _write(self, mode: str, text: str) -> None:
         try:

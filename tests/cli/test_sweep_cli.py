@@ -15,6 +15,7 @@ import pytest
 
 from batcert.commands.sweep import journal_path, plan_sweep, run_sweep
 from batcert.sweeps import execute as execute_module
+from batcert.sweeps.execute import sweep_key
 from batcert.sweeps.sweep import evaluate_chunk
 
 REPO = Path(__file__).resolve().parents[2]
@@ -114,9 +115,9 @@ def test_resume_continues_an_interrupted_sweep(batcert_cli, tmp_path, monkeypatc
     assert batcert_cli(*SWEEP, "--out", out, "--format", "json").exit_code == 0
     whole = json.loads((out / f"{STEM}.json").read_text())
     # the journal an interrupted `batcert sweep` leaves: header, first chunk, half a line
-    journal = journal_path(out, STEM)
-    run_sweep(plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:60m/s:6"], "rigid"),
-              journal_at=journal)
+    plan = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:60m/s:6"], "rigid")
+    journal = journal_path(out, STEM, sweep_key(plan))
+    run_sweep(plan, journal_at=journal)
     lines = journal.read_text().splitlines()
     assert len(lines) == 3  # header and two chunks (4 + 2 variants)
     journal.write_text(lines[0] + "\n" + lines[1] + "\n" + lines[2][:40])
@@ -200,3 +201,17 @@ def test_help_examples_run(batcert_cli, monkeypatch, example):
     monkeypatch.chdir(REPO)
     result = batcert_cli("sweep", *shlex.split(example), "--engine", "rigid", "--no-reports")
     assert result.exit_code == 0, result.stderr
+
+
+def test_resume_without_a_journal_of_this_sweep_says_so(batcert_cli, tmp_path):
+    # another sweep's journal in the folder (same bat, protocol and parameter, other values)
+    # is neither read nor touched; this sweep says it starts from the beginning
+    out = tmp_path / "r"
+    other = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:61m/s:6"], "rigid")
+    theirs = journal_path(out, STEM, sweep_key(other))
+    run_sweep(other, journal_at=theirs)
+    before = theirs.read_text()
+    result = batcert_cli(*SWEEP, "--out", out, "--format", "json", "--resume")
+    assert result.exit_code == 0, result.stderr
+    assert "no journal of this sweep" in " ".join(result.stderr.split())
+    assert theirs.read_text() == before

@@ -275,3 +275,65 @@ def test_a_journal_of_another_sweep_is_refused(tmp_path, counted, other):
         run_sweep(plan_sweep(bat, protocol, [vary], engine=engine), journal_at=journal,
                   resume=True)
     assert counted == [] and journal.read_text() == before
+
+
+def _journal_of(tmp_path, vary="pitch_speed=40m/s:60m/s:9"):
+    """A whole journal of a rigid ash-34 sweep in three chunks (its lines), and the plan."""
+    plan = plan_sweep("ash-34", "ncaa-bbcor", [vary], engine="rigid")
+    journal = tmp_path / "sweep.partial.jsonl"
+    run_sweep(plan, journal_at=journal)
+    return plan, journal, journal.read_text().splitlines()
+
+
+@pytest.mark.parametrize("damage", [
+    "header cut",  # the first line damaged: it can no longer show which sweep it holds
+    "middle line",  # a damaged line that is not the last one cut short
+    "not an object", "no rows", "chunk as text", "a second, different copy",
+])
+def test_a_journal_that_cannot_prove_its_rows_is_refused(tmp_path, counted, damage):
+    # issue 24: a journal whose first line was damaged used to skip the check that it belongs
+    # to this sweep and report another sweep's rows as this one's, exit 0
+    plan, journal, lines = _journal_of(tmp_path)
+    entry = json.loads(lines[1])
+    broken = {
+        "header cut": [lines[0][:20], *lines[1:]],
+        "middle line": [lines[0], lines[1][:30], *lines[2:]],
+        "not an object": [lines[0], json.dumps([1, 2]), *lines[2:]],
+        "no rows": [lines[0], json.dumps({**entry, "rows": None}), *lines[2:]],
+        "chunk as text": [lines[0], json.dumps({**entry, "chunk": "0"}), *lines[2:]],
+        "a second, different copy": [*lines, json.dumps({**entry, "rows": entry["rows"][:1]})],
+    }[damage]
+    journal.write_text("\n".join(broken) + "\n")
+    counted.clear()
+    with pytest.raises(UsageProblem, match="the journal is not used"):
+        run_sweep(plan, journal_at=journal, resume=True)
+    assert counted == []
+
+
+def test_every_line_must_be_of_this_sweep(tmp_path, counted):
+    # Two sweeps of the same parameter over other values: a line of one spliced into the
+    # other's journal (what sharing a journal did) is refused, at its line.
+    plan, journal, lines = _journal_of(tmp_path)
+    _, other, other_lines = _journal_of(tmp_path / "b", "pitch_speed=40m/s:61m/s:9")
+    journal.write_text("\n".join([lines[0], lines[1], other_lines[2]]) + "\n")
+    counted.clear()
+    with pytest.raises(UsageProblem, match=r"line 3: the line is not of this sweep"):
+        run_sweep(plan, journal_at=journal, resume=True)
+    assert counted == []
+
+
+def test_two_sweeps_of_one_parameter_keep_separate_journals(tmp_path):
+    from batcert.commands.sweep import journal_path
+    from batcert.sweeps.execute import sweep_key
+    a = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:60m/s:9"], engine="rigid")
+    b = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:61m/s:9"], engine="rigid")
+    assert journal_path(tmp_path, "s", sweep_key(a)) != journal_path(tmp_path, "s", sweep_key(b))
+    assert journal_path(tmp_path, "s", sweep_key(a)) == journal_path(tmp_path, "s",
+                                                                     sweep_key(a))
+
+
+def test_a_binary_journal_is_refused_cleanly(tmp_path, counted):
+    plan, journal, _ = _journal_of(tmp_path)
+    journal.write_bytes(b"\xff\xfe\x00garbage")
+    with pytest.raises(UsageProblem, match="not a text file"):
+        run_sweep(plan, journal_at=journal, resume=True)

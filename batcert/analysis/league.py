@@ -83,9 +83,15 @@ def bat_facts(built: BuiltBat) -> BatFacts:
 # ---------------------------------------------------------------- evaluators
 
 
+def _at_limit(margin: float, limit: float) -> float:
+    """``margin``, or exactly 0 where it is only the rounding of the limit's own arithmetic
+    (within ``_REL`` of it): a bat at exactly drop 3 is at the limit, not 7e-15 short."""
+    return 0.0 if abs(margin) <= _REL * max(abs(limit), 1.0) else margin
+
+
 def _at_most(value: float, limit: float, tol: float = 0.0) -> tuple[str, float]:
-    margin = limit + tol - value
-    return ("pass" if margin >= -_REL * max(abs(limit), 1.0) else "fail"), margin
+    margin = _at_limit(limit + tol - value, limit)
+    return ("pass" if margin >= 0.0 else "fail"), margin
 
 
 def _max_length(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleResult:
@@ -108,8 +114,8 @@ def _max_barrel(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleResul
 
 
 def _min_diameter(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleResult:
-    margin = f.min_diameter - rule.limit
-    verdict = "pass" if margin >= -_REL * rule.limit else "fail"
+    margin = _at_limit(f.min_diameter - rule.limit, rule.limit)
+    verdict = "pass" if margin >= 0.0 else "fail"
     return RuleResult(rule.id, "", rule.kind, f.min_diameter, rule.limit, verdict, "m",
                       margin=margin, note="smallest outer diameter of the profile")
 

@@ -225,3 +225,20 @@ def test_rule_field_consistency(tmp_path):
     text = info.value.render()
     assert "takes no limit" in text and "did you mean 'wood'" in text
     assert "duplicate rule id 'a'" in text
+
+
+def test_a_bat_at_exactly_the_drop_limit_is_at_the_limit():
+    # Issue 24: a legal 34 in, 31 oz bat (drop exactly 3) showed "margin -<0.01, PASS", its
+    # JSON -7.1e-15 beside "pass": the rounding of in/oz arithmetic, not a real shortfall. A
+    # margin within the rule's 1e-9 relative rounding is exactly 0, "0 (at the limit)".
+    from batcert.reports.format import margin_text
+    from batcert.units import INCH, OUNCE
+    bat = BatFacts("exactly -3", "x.yaml", "0" * 64, 34 * INCH, 31 * OUNCE, 2.625 * INCH,
+                   0.9 * INCH, "hollow", "aluminium-7050", "metal", "")
+    assert bat.drop != 3.0  # the arithmetic's rounding is really there
+    result = evaluate_rule(_rule(id="drop", kind="max-drop", limit=3.0), bat)
+    assert (result.verdict, result.margin) == ("pass", 0.0)
+    assert margin_text(result.margin, 2, "in - oz") == "0 in - oz (at the limit)"
+    # a hundredth of an ounce lighter (drop 3.01) still fails
+    lighter = BatFacts(**{**vars(bat), "mass": (31 - 0.01) * OUNCE})
+    assert evaluate_rule(_rule(id="drop", kind="max-drop", limit=3.0), lighter).verdict == "fail"

@@ -148,8 +148,8 @@ def table(t: Table, title: str = "") -> None:
     if _Settings.quiet:
         return
     title = title or t.title
-    if not _terminal(sys.stdout):
-        _plain_table(t, title)
+    if not _terminal(sys.stdout) or _natural_width(t) > _console(False).width:
+        _plain_table(t, title)  # wider than the terminal: a row's cells one per line, never cut
         return
     from rich.table import Table as RichTable
     from rich.text import Text
@@ -170,16 +170,28 @@ def table(t: Table, title: str = "") -> None:
     _console(False).print(r)
 
 
+def _widths(t: Table) -> list[int]:
+    """Each column's natural width: its longest header line or cell."""
+    rows = [[_cell_text(c) for c in row] for row in [*t.rows, *t.foot]]
+    return [max([len(x) for x in h.split("\n")] + [len(r[i]) for r in rows])
+            for i, h in enumerate(t.headers)]
+
+
+def _natural_width(t: Table) -> int:
+    """The width a table needs with nothing cut (two spaces between columns)."""
+    widths = _widths(t)
+    return sum(widths) + 2 * (len(widths) - 1)
+
+
 def _plain_table(t: Table, title: str) -> None:
     """Aligned columns (headers over as many lines as they have) when they fit the width;
     otherwise each row as ``header: value`` lines, so that nothing is ever cut."""
     head_lines = [h.split("\n") for h in t.headers]
     depth = max(len(h) for h in head_lines)
     rows = [[_cell_text(c) for c in row] for row in [*t.rows, *t.foot]]
-    widths = [max([len(x) for x in h] + [len(r[i]) for r in rows])
-              for i, h in enumerate(head_lines)]
+    widths = _widths(t)
     lines = [title] if title else []
-    if sum(widths) + 2 * (len(widths) - 1) <= _width():
+    if _natural_width(t) <= _width():
         def line(cells: Sequence[str]) -> str:
             return "  ".join(c.rjust(w) if t.is_numeric(i) else c.ljust(w)
                              for i, (c, w) in enumerate(zip(cells, widths, strict=True))).rstrip()

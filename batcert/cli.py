@@ -168,7 +168,7 @@ def _output_options(printed: str, engine_help: str = "Impact engine tier."):
     options = [
         click.option("--engine", type=click.Choice(["rigid", "flexible"]), default="flexible",
                      show_default=True, help=engine_help),
-        click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path),
+        click.option("--out", "out_dir", type=click.Path(path_type=Path),
                      default=None, help="Directory for the reports [default: reports; with "
                      "--json, reports are written only if --out is given]."),
         click.option("--format", "formats", default="md,html,json", show_default=True,
@@ -211,7 +211,29 @@ def _figures(result, figures_dir: Path | None) -> None:
     console.note(f"wrote {len(paths)} figure files to {figures_dir}")
 
 
-@click.group(epilog=EXIT_CODES + """
+_GLOBAL_FLAGS = {"-q", "--quiet", "-v", "--verbose"}
+
+
+class _Batcert(click.Group):
+    """The ``batcert`` group: ``-q`` and ``-v`` are also taken after the subcommand
+    (``batcert run ... -q``), where a user types them as often as before it; no subcommand has
+    options of those names. Everything after ``--`` is left as it is."""
+
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        names = set(self.commands)
+        at = next((i for i, a in enumerate(args) if a in names), None)
+        if at is not None:
+            head, tail = args[:at + 1], args[at + 1:]
+            stop = tail.index("--") if "--" in tail else len(tail)
+            hoisted = [a for a in tail[:stop] if a in _GLOBAL_FLAGS or
+                       (len(a) > 2 and a.startswith("-v") and set(a[1:]) == {"v"})]
+            if hoisted:
+                kept = [a for a in tail[:stop] if a not in hoisted] + tail[stop:]
+                args = hoisted + head + kept
+        return super().parse_args(ctx, args)
+
+
+@click.group(cls=_Batcert, epilog=EXIT_CODES + """
 
 \b
 Examples:
@@ -290,6 +312,8 @@ def run(bat, protocols, samples, seed, engine, out_dir, formats, no_reports, as_
     def show(results, written):
         if as_json:
             console.print_json({"results": [r.to_dict() for r in results]})
+            for r in results:
+                console.warnings(r.warnings)
         else:
             for r, paths in zip(results, written, strict=True):
                 console.run_summary(r, paths)
@@ -448,22 +472,38 @@ Examples:
   batcert validate bats/*.yaml protocols/*.yaml
   batcert validate my-bat.yaml ncaa-bbcor""")
 @click.argument("files", nargs=-1, required=True, type=click.Path())
-def validate(files):
+@click.option("--json", "as_json", is_flag=True, help="Print only JSON on stdout: each file "
+              "with its kind and every problem (file, line, column, field, message).")
+def validate(files, as_json):
     """Check spec files (bat, ball, protocol, league, study; paths or shipped names) and the
     files they name; report every problem of every file."""
     from batcert.commands.validate import shipped_path, validate_file
     from batcert.specs.resolve import NotFound
     failed = False
+    report = []
     for f in files:
+        entry: dict = {"file": f, "kind": None, "ok": True, "problems": []}
         try:
-            kind = validate_file(shipped_path(f))
-            console.note_out(f"ok  {f} ({kind})")
+            entry["kind"] = validate_file(shipped_path(f))
+            if not as_json:
+                console.note_out(f"ok  {f} ({entry['kind']})")
         except InputError as exc:
-            console.input_error(exc.render())
-            failed = True
+            entry["ok"] = False
+            entry["problems"] = [{"file": p.file, "line": p.line, "column": p.column,
+                                  "field": p.field, "message": p.message}
+                                 for p in exc.problems]
+            if not as_json:
+                console.input_error(exc.render())
         except NotFound as exc:
-            console.error(f"{f}: {exc}")
-            failed = True
+            entry["ok"] = False
+            entry["problems"] = [{"file": f, "line": None, "column": None, "field": "",
+                                  "message": str(exc)}]
+            if not as_json:
+                console.error(f"{f}: {exc}")
+        failed = failed or not entry["ok"]
+        report.append(entry)
+    if as_json:
+        console.print_json({"files": report})
     sys.exit(3 if failed else 0)
 
 
@@ -485,11 +525,20 @@ Exit codes:
 """ + ENVIRONMENT_EXIT_CODES
 
 
+def _all_warnings(result) -> list[str]:
+    """A result's warnings, a league's per bat too."""
+    out = list(getattr(result, "warnings", []) or [])
+    for bat in getattr(result, "bats", []) or []:
+        out += [w for w in getattr(bat, "warnings", []) or [] if w not in out]
+    return out
+
+
 def _deliver(result, summary, target, fmts, as_json: bool) -> None:
     """Write the reports (see :func:`_write_then_show`), then print JSON or the summary."""
     def show(results, paths):
         if as_json:
             console.print_json(results[0].to_dict())
+            console.warnings(_all_warnings(results[0]))
         else:
             summary(results[0], paths[0])
     _write_then_show([result], target, fmts, show)

@@ -239,11 +239,17 @@ def _wrote(paths: Sequence[Any]) -> None:
         _emit([(f"  wrote {p}", "")])
 
 
-def _warnings(warnings: Sequence[str]) -> None:
+def warnings(warnings: Sequence[str]) -> None:
+    """A result's warnings, on stderr in every mode (with ``--json`` too, where stdout holds
+    only the JSON), so that a script reading stdout and a person reading the terminal both
+    get them; not with ``--quiet``."""
     if _Settings.quiet:
         return
     for w in warnings:
-        _emit([("  warning: ", "yellow"), (w, "")])
+        _emit([("  warning: ", "yellow"), (w, "")], stderr=True)
+
+
+_warnings = warnings
 
 
 def run_summary(result, paths: Sequence[Any]) -> None:
@@ -319,10 +325,12 @@ def league_summary(result, paths: Sequence[Any]) -> None:
 def sweep_summary(result, paths: Sequence[Any]) -> None:
     """Terminal view of a sweep or design study: the headline, the table per variant (up to
     40 rows; the reports hold more) and the design's answer."""
-    from batcert.reports.sweep_view import headline, sweep_view
+    from batcert.reports.sweep_view import headline, nominal_sentence, sweep_view
     view = sweep_view(result, charts=False)
     _emit([(view["title"], "bold")])
     _emit([(f"  {headline(result)}", "")])
+    if nominal_sentence(result) and not _Settings.quiet:
+        _emit([(f"  {nominal_sentence(result)}", "")])
     t = view["summary"]
     if len(t.rows) > 40:
         step = -(-len(t.rows) // 40)

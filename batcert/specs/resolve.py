@@ -68,12 +68,31 @@ def resolve(kind: str, value: str, relative_to: Path | None = None) -> Path:
     names = shipped_names(kind)
     if value in names:
         return names[value]
+    folded = {n.casefold(): n for n in names}  # shipped names compare case-insensitively
+    if value.casefold() in folded:
+        return names[folded[value.casefold()]]
     if candidate.suffix in (".yaml", ".yml") or "/" in value:
         raise NotFound(f"{kind} file not found: {value}")
-    import difflib
-    close = difflib.get_close_matches(value, list(names), n=1, cutoff=0.5)
-    hint = f"; did you mean '{close[0]}'?" if close else ""
+    close = suggest(value, list(names))
+    hint = f"; did you mean '{close}'?" if close else ""
     raise NotFound(f"unknown {kind} {value!r} (shipped: {', '.join(names) or 'none'}){hint}")
+
+
+def suggest(value: str, names: list[str]) -> str | None:
+    """The shipped name a mistyped ``value`` most likely meant: one that starts with what was
+    typed before its first dash or digit ("alu-34" -> "aluminium-34"), else the closest by
+    spelling; None when nothing is close."""
+    import difflib
+    import re
+    typed = value.casefold()
+    stem = re.split(r"[-_\d]", typed, maxsplit=1)[0]
+    if stem:
+        starts = [n for n in names if n.casefold().startswith(stem)]
+        if starts:
+            return max(starts, key=lambda n: difflib.SequenceMatcher(
+                None, typed, n.casefold()).ratio())
+    close = difflib.get_close_matches(typed, [n.casefold() for n in names], n=1, cutoff=0.5)
+    return next((n for n in names if n.casefold() == close[0]), None) if close else None
 
 
 def display_path(path: str | Path) -> str:

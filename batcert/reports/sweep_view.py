@@ -194,6 +194,8 @@ def _condition_table(result: SweepResult, k: int) -> Table:
 
 def _facts(result: SweepResult) -> list[tuple[str, str]]:
     facts = [("Bat", f"{result.bat} ({result.bat_path})"),
+             *([("Bat identification", fmt.identification(result.bat_identification))]
+               if result.bat_identification else []),
              ("Protocol", f"{result.protocol}: {result.protocol_title}"),
              ("Metric", f"{fmt.metric_name(result.metric)}, {fmt.aggregate_word(result.aggregate)}"
                         f" of {len(result.conditions)} condition"
@@ -211,6 +213,14 @@ def _facts(result: SweepResult) -> list[tuple[str, str]]:
                                                  if k != "engine")),
               ("Date", fmt.created(result.created)), ("batcert version", result.batcert_version)]
     return facts
+
+
+def _drop(length: float | None, mass: float | None) -> str:
+    """A bat's drop (length in inches minus weight in ounces), as league rules read it."""
+    from batcert.units import INCH, OUNCE
+    if length is None or mass is None:
+        return fmt.DASH
+    return fmt.signed(f"{length / INCH - mass / OUNCE:.2f}")
 
 
 def design_statement(result: SweepResult) -> str:
@@ -242,7 +252,26 @@ def design_statement(result: SweepResult) -> str:
             parts.append(f"from {a}{at(edges[k])} to {at(edges[k + 1])}{b}")
     text = (f"The protocol passes for {name} " + " and ".join(parts)) if parts else \
         f"The protocol passes for no {name} in the range"
-    return text + f"; the limit is met at {', '.join(at(r.value) for r in roots)}"
+    def bat(r) -> str:  # the bat there, as a league rule reads it
+        if r.mass is None:
+            return ""
+        return f" (mass {fmt.quantity(r.mass, 'mass')}, drop {_drop(r.length, r.mass)})"
+    return text + f"; the limit is met at {', '.join(at(r.value) + bat(r) for r in roots)}"
+
+
+def nominal_sentence(result: SweepResult) -> str:
+    """Why the variants differ from ``run`` on the same bat, where they do: geometric variants
+    are built from the geometry alone (docs/sweeps.md), the bat as measured is reconciled to its
+    measurements; "" when the sweep states no measured bat."""
+    n = result.nominal
+    if n is None or n.value is None:
+        return ""
+    measured = fmt.quantity(n.measured_mass, "mass") if n.measured_mass else "its measurements"
+    verdict = f", {n.verdict}" if n.verdict else ""
+    return (f"The variants are built from the bat's geometry (mass "
+            f"{fmt.quantity(n.geometry_mass, 'mass')}); the bat as measured ({measured}) gives "
+            f"{fmt.metric_name(result.metric)} {fmt.metric_value(n.value, result.metric)}"
+            f"{verdict}, as `batcert run` does: the nominal variant is not that result.")
 
 
 def headline(result: SweepResult) -> str:
@@ -282,12 +311,15 @@ def sweep_view(result: SweepResult, charts: bool = True) -> dict[str, Any]:
         d = result.design
         first = result.axes[0]
         design = {"statement": design_statement(result) + ".",
-                  "table": Table(["root", "bracket", "evaluations", "passes"],
+                  "table": Table(["root", "bracket", "evaluations", "passes",
+                                  "mass at the root", "drop at the root [in - oz]"],
                                  [[axis_value(first, r.value),
                                    f"{axis_value(first, r.bracket[0]).si} to "
                                    f"{axis_value(first, r.bracket[1]).si}",
-                                   str(r.evaluations), "above" if r.passes_above else "below"]
-                                  for r in d.roots], [True, False, True, False]),
+                                   str(r.evaluations), "above" if r.passes_above else "below",
+                                   fmt.quantity(r.mass, "mass") if r.mass else fmt.DASH,
+                                   _drop(r.length, r.mass)]
+                                  for r in d.roots], [True, False, True, False, True, True]),
                   "tolerance": axis_value(first, d.tolerance).si}
     title = ("Design" if result.design else "Sweep") + f": {result.bat}, {result.protocol}, " \
         + " x ".join(a.name for a in result.axes)

@@ -18,13 +18,17 @@ from batcert.sweeps.variants import ParameterError
 
 def margin_at(plan: Plan, value: float) -> float:
     """The margin of one variant (the engine solves it now)."""
+    return float(_row_at(plan, value)["margin"])
+
+
+def _row_at(plan: Plan, value: float) -> dict:
     chunk = Chunk(0, plan.base, plan.built, plan.ball, plan.engine, (plan.axes[0].name,),
                   ((0, (value,)),), plan.created)
     row = evaluate_chunk(chunk)[0]
     if row["error"] is not None:
         raise ParameterError(f"{plan.axes[0].name} = {value:.6g}: the model has no result "
                              f"({row['error']})")
-    return float(row["margin"])
+    return row
 
 
 ROUNDING = 1e-12  # a margin this close to zero is taken as zero (it passes): rounding, not a root
@@ -56,5 +60,7 @@ def solve(plan: Plan, curve: SweepResult, tolerance: float) -> DesignResult:
             return margin_at(plan, x)
 
         root = float(brentq(f, x0, x1, xtol=tolerance, rtol=1e-12, maxiter=100))
-        roots.append(DesignRoot(root, [x0, x1], calls[0], passes_above=_passes(m1)))
+        at = _row_at(plan, root)  # the bat there: its mass and length (the drop)
+        roots.append(DesignRoot(root, [x0, x1], calls[0], passes_above=_passes(m1),
+                                mass=at.get("mass"), length=at.get("length")))
     return DesignResult(plan.axes[0].name, tolerance, roots, [xs[0], xs[-1]])

@@ -146,3 +146,19 @@ def test_flexible_wall_root_is_bracketed(tmp_path):
     assert 2.7e-3 < root.value < 1.75 * 2.7e-3
     plan = plan_sweep("aluminium-34", str(path), ["wall=100%:175%:3"], engine="flexible")
     assert margin_at(plan, root.value - tol) < 0 < margin_at(plan, root.value + tol)
+
+
+def test_the_answer_states_the_bats_mass_and_drop(bbcor_052):
+    # Issue 24: design gave a wall at which the bat weighs 22 oz (drop -12) without showing
+    # mass or drop. The root now carries the bat there (as every variant: the geometry's mass
+    # for a geometric parameter, the measured one otherwise) and the answer states its mass and
+    # drop, as a league's drop rule reads them.
+    from batcert.units import INCH, OUNCE
+    result = run_design("ash-34", bbcor_052, "pitch_speed", "40m/s:75m/s", engine="rigid")
+    (root,) = result.design.roots
+    plan = plan_sweep("ash-34", bbcor_052, ["pitch_speed=40m/s:75m/s:9"], engine="rigid")
+    mp = mass_properties(plan.built, plan.base.protocol.pivot)
+    assert root.mass == pytest.approx(mp.mass, rel=1e-12)
+    assert root.length == pytest.approx(plan.built.model.length, rel=1e-12)
+    drop = root.length / INCH - root.mass / OUNCE
+    assert f"(mass 0.906 kg (31.96 oz), drop {drop:.2f})" in design_statement(result)

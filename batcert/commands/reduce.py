@@ -13,7 +13,7 @@ from batcert.lab.certify import DECISION_RULES, MC_DRAWS, certify, guard_band
 from batcert.lab.session import load_lab_session
 from batcert.results.lab import LabHit, LabLocation, LabResult
 from batcert.results.serialise import utc_now
-from batcert.runner.runner import decide
+from batcert.runner.runner import decide, identification
 from batcert.specs.resolve import display_path
 
 
@@ -117,6 +117,7 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
                "sha256": session.ball.sha256},
               {"role": "protocol", "name": p.id, "path": display_path(p.path), "sha256": p.sha256}]
     return LabResult(
+        bat_identification=identification(bat),
         session=spec.name, session_path=display_path(spec.path), bat=bat.name, protocol=p.id,
         protocol_title=p.title, metric=p.metric, statement="measured",
         limit=p.limit.max if p.limit else None, tolerance=p.limit.tolerance if p.limit else 0.0,

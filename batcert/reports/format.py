@@ -274,3 +274,8 @@ def slugify(text: str, fallback: str = "report") -> str:
     ascii_text = unicodedata.normalize("NFKD", text).encode("ascii", "ignore").decode("ascii")
     slug = re.sub(r"[^a-z0-9]+", "-", ascii_text.lower()).strip("-")
     return slug or fallback
+
+
+def identification(values: dict[str, str]) -> str:
+    """A bat's identification on one line ("maker Example, model EB-34, serial 123"), or ""."""
+    return ", ".join(f"{k} {v}" for k, v in values.items() if v)

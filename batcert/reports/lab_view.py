@@ -76,6 +76,8 @@ def lab_view(result: LabResult, charts: bool = True) -> dict[str, Any]:
             str(result.lab[k])) for k, word in lab_words.items() if k in result.lab]
     facts = lab + [
         ("Session", f"{result.session} ({result.session_path})"), ("Bat", result.bat),
+        *([("Bat identification", fmt.identification(result.bat_identification))]
+          if result.bat_identification else []),
         ("Protocol", f"{result.protocol}: {result.protocol_title}"),
         ("Values", "measured (reduced from the hits), not computed by the model"),
         ("Decision rule", result.decision_rule_text),

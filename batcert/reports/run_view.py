@@ -55,8 +55,10 @@ def header_rows(result: RunResult) -> list[tuple[str, str]]:
     n = len(result.conditions)
     title = f"{result.protocol} \u2014 {result.protocol_title}" if result.protocol_title \
         else result.protocol
+    ident = fmt.identification(result.bat_identification)
     return [
         ("Bat", result.bat),
+        *([("Bat identification", ident)] if ident else []),
         ("Ball", result.ball),
         ("Protocol", title),
         ("Protocol version", result.protocol_version or fmt.DASH),

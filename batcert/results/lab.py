@@ -86,3 +86,4 @@ class LabResult(Serialisable):
     # the model's prediction of the same test (engine, from_tip [m], metric, value,
     # location_from_tip [m], at_certified_location, difference = measured - model)
     model: dict[str, Any] = field(default_factory=dict)
+    bat_identification: dict[str, str] = field(default_factory=dict)  # maker, model, serial, lot

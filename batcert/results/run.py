@@ -177,3 +177,4 @@ class RunResult(Serialisable):
     # measures of the model's offset for this metric ("" where nothing anchors it)
     statement: str = "predicted"
     model_offset: str = ""
+    bat_identification: dict[str, str] = field(default_factory=dict)  # maker, model, serial, lot

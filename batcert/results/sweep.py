@@ -6,7 +6,7 @@ A variant the model cannot build or solve has None in every array and its reason
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from batcert.results.serialise import Serialisable
@@ -86,6 +86,7 @@ class SweepResult(Serialisable):
     batcert_version: str
     created: str
     design: DesignResult | None = None
+    bat_identification: dict[str, str] = field(default_factory=dict)  # maker, model, serial, lot
 
     @property
     def parameter(self) -> str | list[str]:
@@ -115,6 +116,8 @@ class DesignRoot:
     bracket: list[float]  # the values that bracketed it [SI]
     evaluations: int  # engine evaluations of the refinement
     passes_above: bool  # the protocol passes for values above the root
+    mass: float | None = None  # the bat's mass at the root [kg] (its geometry's, as variants)
+    length: float | None = None  # and its length [m]: the drop a league rule reads
 
 
 @dataclass

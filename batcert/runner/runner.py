@@ -337,7 +337,13 @@ def protocol_steps(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engi
         inputs=inputs, batcert_version=__version__, created=created,
         warnings=(_warnings(p, conds, choice, engine) + _barrel_warning(barrel, metric.display)
                   + _wall_warning(conds, diag)),
-        extras=bat_dynamics(built, p.pivot), barrel=barrel, model_offset=metric.model_offset)
+        extras=bat_dynamics(built, p.pivot), barrel=barrel, model_offset=metric.model_offset,
+        bat_identification=identification(built.spec))
+
+
+def identification(spec) -> dict[str, str]:
+    """The bat file's ``identification:`` entries that are given (maker, model, serial, lot)."""
+    return {k: str(v) for k, v in (spec.identification or {}).items() if v}
 
 
 def _final_steps(bench: Bench, conds: list[Condition], locations: np.ndarray, metric,

@@ -142,6 +142,13 @@ def _check_bat(v: dict, data: Located, errors: Collector, path: str) -> None:
             errors.add(lookup(data, "wall")[0], "wall", on_bat)
 
 
+IDENTIFICATION_SCHEMA = Schema("bat identification", (
+    Field("maker", text(), "Who made the bat."),
+    Field("model", text(), "The maker's model name or number."),
+    Field("serial", text(), "The bat's serial number (one physical bat)."),
+    Field("lot", text(), "The production lot or batch."),
+))
+
 BAT_SCHEMA = Schema("bat", (
     Field("name", text(), "Bat name shown in reports.", required=True),
     *HEADER_FIELDS,
@@ -178,6 +185,8 @@ BAT_SCHEMA = Schema("bat", (
           "model is calibrated to them)."),
     Field("reconcile", choice("density-profile", "point-masses", "none"), "How the model is "
           "corrected to the measured values (docs/reconciliation.md).", default="density-profile"),
+    Field("identification", section(IDENTIFICATION_SCHEMA), "Which bat this file describes: "
+          "maker, model, serial number, lot (text, each optional); shown on every report."),
 ), checks=(_check_bat,))
 
 
@@ -219,6 +228,7 @@ class BatSpec:
     slice_length: float  # [m]
     measured: MeasuredSpec | None
     reconcile: str  # density-profile | point-masses | none
+    identification: dict | None = None  # maker, model, serial, lot (text; those given)
 
     @property
     def path(self) -> str:

@@ -100,7 +100,7 @@ def variant_case(base: Case, built: BuiltBat, names, point) -> Case:
 def _row(index: int, result: RunResult) -> Row:
     mp, barrel = result.mass_properties, result.barrel
     row: Row = {"index": index, "error": None, "value": result.value, "margin": result.margin,
-                "verdict": result.verdict, "mass": mp.mass, "cg": mp.cg,
+                "verdict": result.verdict, "mass": mp.mass, "length": mp.length, "cg": mp.cg,
                 "moi_pivot": mp.moi_pivot, "cop": mp.cop,
                 "value_low": barrel.value_low if barrel else None,
                 "value_high": barrel.value_high if barrel else None,
@@ -227,4 +227,10 @@ def collect(plan: Plan, rows: list[Row], nominal: NominalRun | None) -> SweepRes
         engine_settings=settings, axes=axes, points=[list(x) for x in points], series=series,
         verdicts=[r.get("verdict") for r in ordered], errors=[r["error"] for r in ordered],
         conditions=conditions, nominal=nominal, notes=_notes(plan), warnings=warnings,
-        inputs=inputs, batcert_version=__version__, created=plan.created)
+        inputs=inputs, batcert_version=__version__, created=plan.created,
+        bat_identification=_identification(bat))
+
+
+def _identification(spec) -> dict[str, str]:
+    from batcert.runner.runner import identification
+    return identification(spec)

@@ -2,12 +2,11 @@
 report, and a set is replaced whole or not at all.
 
 All requested formats are rendered before anything touches the disk, so a rendering error writes
-nothing. Each file is then staged as a temporary file in the target directory (flushed and
-fsynced); only when every file is staged are existing reports set aside and the staged files
-moved onto their targets with ``os.replace``. If any step fails, the files already moved are
-taken back, the set-aside reports restored and every temporary file removed, so the previous set
-stays as it was. A location that cannot hold the reports raises :class:`OutputError` (the
-command line's exit code 4), and :func:`check_output_dir` finds it before any work is done.
+nothing. The files of one directory are then written as one transaction
+(:mod:`batcert.reports.fileset`): staged, committed by a journal, moved into place; an error
+rolls the set back, a crash is finished by the next writer into the directory, which also
+removes what a crash left. A location that cannot hold the reports raises :class:`OutputError`
+(the command line's exit code 4), and :func:`check_output_dir` finds it before any work is done.
 """
 
 from __future__ import annotations
@@ -235,66 +234,19 @@ def atomic_write_text(path: Path, text: str, encoding: str = "utf-8") -> Path:
 
 
 def _write_all(texts: dict[Path, str | bytes], encoding: str = "utf-8") -> None:
-    """Stage every file, set the existing targets aside, move the staged files in; on any
-    failure (or an interrupt) undo what was done, so the previous set stays whole."""
-    staged: list[tuple[str, Path]] = []
-    aside: list[tuple[str, Path]] = []  # (backup, target) of reports that existed
-    placed: list[Path] = []
-    try:
-        for target, text in texts.items():
-            if target.is_dir():
-                raise OutputError(target, "a directory is in the way of this report")
-            data = text if isinstance(text, bytes) else text.encode(encoding)
-            staged.append((_stage(target, data), target))
-        for _, target in staged:
-            if target.exists():
-                backup = _reserve(target, ".bak")
-                try:
-                    os.replace(target, backup)
-                except BaseException:
-                    _unlink_quietly(backup)
-                    raise
-                aside.append((backup, target))
-        for tmp, target in staged:
-            os.replace(tmp, target)
-            placed.append(target)
-    except BaseException:
-        for target in placed:
-            _unlink_quietly(str(target))
-        for backup, target in aside:
-            try:
-                os.replace(backup, target)
-            except OSError:
-                pass
-        for tmp, _ in staged:
-            _unlink_quietly(tmp)
-        raise
-    for backup, _ in aside:
-        _unlink_quietly(backup)
-    for directory in {target.parent for target in texts}:
-        _fsync_dir(directory)
-
-
-def _reserve(target: Path, suffix: str) -> str:
-    """A fresh name next to ``target`` (created empty, to be replaced)."""
-    fd, name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=suffix, dir=target.parent)
-    os.close(fd)
-    return name
-
-
-def _stage(target: Path, data: bytes) -> str:
-    """Write ``data`` to a fsynced temporary file next to ``target``; return its path."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.chmod(tmp, _mode_for(target))
-    except BaseException:
-        _unlink_quietly(tmp)
-        raise
-    return tmp
+    """Write each directory's files as one set (:func:`batcert.reports.fileset.write_set`:
+    whole or not at all, even across a crash, and a crash's leftovers cleaned)."""
+    from batcert.reports.fileset import write_set
+    by_dir: dict[Path, dict[str, bytes]] = {}
+    modes: dict[Path, dict[str, int]] = {}
+    for target, text in texts.items():
+        if target.is_dir():
+            raise OutputError(target, "a directory is in the way of this report")
+        data = text if isinstance(text, bytes) else text.encode(encoding)
+        by_dir.setdefault(target.parent, {})[target.name] = data
+        modes.setdefault(target.parent, {})[target.name] = _mode_for(target)
+    for directory, files in by_dir.items():
+        write_set(directory, files, modes[directory])
 
 
 def _mode_for(target: Path) -> int:
@@ -306,24 +258,3 @@ def _mode_for(target: Path) -> int:
         umask = os.umask(0)
         os.umask(umask)
         return 0o666 & ~umask
-
-
-def _unlink_quietly(path: str) -> None:
-    try:
-        os.unlink(path)
-    except FileNotFoundError:
-        pass
-
-
-def _fsync_dir(directory: Path) -> None:
-    """Make the renames durable (POSIX); silently skipped where directories cannot be opened."""
-    try:
-        fd = os.open(directory, os.O_RDONLY)
-    except OSError:
-        return
-    try:
-        os.fsync(fd)
-    except OSError:
-        pass
-    finally:
-        os.close(fd)

@@ -260,11 +260,11 @@ def test_bad_output_location_exits_4_before_running(batcert_cli, tmp_path, monke
 
 
 def test_write_failure_after_running_still_shows_the_verdict(batcert_cli, tmp_path, monkeypatch):
-    import batcert.reports.write as write
+    import batcert.reports.fileset as fileset
 
-    def full(target, data):
+    def full(directory, name, data, mode):
         raise OSError(28, "No space left on device")
-    monkeypatch.setattr(write, "_stage", full)
+    monkeypatch.setattr(fileset, "_stage", full)
     result = batcert_cli("run", ASH, "-p", "ncaa-bbcor", "--out", tmp_path / "reports")
     assert result.exit_code == 4
     assert "FAIL" in result.stdout and "BBCOR" in result.stdout  # the verdict is not lost

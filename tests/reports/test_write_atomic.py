@@ -270,10 +270,11 @@ def test_atomic_write_text_interrupted(tmp_path, monkeypatch):
     assert names(tmp_path) == {"report.md"}
 
 
-@pytest.mark.parametrize("fail_at", [1, 2, 3, 4, 5])
+@pytest.mark.parametrize("fail_at", [1, 2, 3, 4])
 def test_a_set_is_replaced_whole_or_not_at_all(result, tmp_path, monkeypatch, fail_at):
-    # Three existing reports are set aside and three new ones moved in: six renames. Whichever
-    # fails, the old set is back whole and no temporary or backup file is left.
+    # The set's journal is renamed into place (the commit point), then three staged reports
+    # onto the old ones: four renames. Whichever fails, the old set is back whole and no
+    # staged file, backup or journal is left.
     old = {fmt: f"old {fmt}" for fmt in FORMATS}
     for fmt, text in old.items():
         (tmp_path / f"{STEM}{FORMATS[fmt]}").write_text(text, encoding="utf-8")

@@ -101,7 +101,9 @@ def render(fig: Figure, fmt: str) -> bytes:
 
     with matplotlib.rc_context({"font.size": 9, "axes.titlesize": 10, "legend.fontsize": 8,
                                 "svg.hashsalt": "batcert", "axes.grid": True,
-                                "grid.color": "#d9d9d9", "grid.linewidth": 0.6}):
+                                "grid.color": "#d9d9d9", "grid.linewidth": 0.6,
+                                # names come from the user's files: "$\frac{1}$" is text here
+                                "text.parse_math": False}):
         n = len(fig.series)
         cols = 2 if max((len(x.name) for x in fig.series), default=0) <= 40 else 1
         least = 1 if isinstance(fig, BarFigure) else 2  # a bar's colour always needs its name

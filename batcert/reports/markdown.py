@@ -26,6 +26,11 @@ def md_text(text: object) -> str:
     return "\\" + out if out[:1] in "#+-=>" and out else out
 
 
+def md_code(text: object) -> str:
+    """Text for inside a code span: on one line, with no backtick to close the span early."""
+    return " ".join(str(text).replace("`", "'").split()) or " "
+
+
 def md_cell(value: object) -> str:
     """One table cell: ``Display`` as "SI (US)", pipes and line breaks neutralised."""
     text = str(value) if isinstance(value, Display) else " ".join(str(value).split())
@@ -44,7 +49,7 @@ def md_table(table: Table) -> str:
     return "\n".join(lines)
 
 
-FILTERS = {"md_text": md_text, "md_cell": md_cell, "md_table": md_table}
+FILTERS = {"md_text": md_text, "md_code": md_code, "md_cell": md_cell, "md_table": md_table}
 
 
 def run_markdown(result: RunResult) -> str:

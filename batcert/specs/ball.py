@@ -29,10 +29,10 @@ from batcert.specs.schema import (
     Kind,
     Schema,
     choice,
+    label,
     number,
     quantity,
     section,
-    text,
 )
 from batcert.specs.yamlio import LocatedList, load_yaml
 from batcert.units import DIMENSIONS, UnitError, parse_quantity, read_spread, split_uncertainty, uncertain
@@ -211,7 +211,7 @@ CONTACT_SCHEMA = Schema("contact law", (
 ), checks=(_contact_check,))
 
 BALL_SCHEMA = Schema("ball", (
-    Field("name", text(), "Ball name shown in reports.", required=True),
+    Field("name", label(), "Ball name shown in reports.", required=True),
     *HEADER_FIELDS,
     Field("mass", quantity("mass", minimum=0.02, maximum=1.0, uncertain=True), "Ball mass "
           "(20-1000 g).",

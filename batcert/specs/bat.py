@@ -20,19 +20,19 @@ from batcert.specs.schema import (
     Kind,
     Schema,
     choice,
+    label,
     lookup,
     number,
     one_of,
     quantity,
     section,
-    text,
     validate,
 )
 from batcert.specs.yamlio import Located, load_yaml
 from batcert.units import to_us
 
 MATERIAL_SCHEMA = Schema("inline material", (
-    Field("name", text(), "Label shown in reports.", default="custom"),
+    Field("name", label(), "Label shown in reports.", default="custom"),
     Field("density", quantity("density", minimum=100.0, maximum=20000.0), "Density "
           "(100-20,000 kg/m^3: balsa to tungsten).", required=True),
     Field("youngs_modulus", quantity("modulus", minimum=1e8, maximum=1e12), "Young's modulus "
@@ -143,14 +143,14 @@ def _check_bat(v: dict, data: Located, errors: Collector, path: str) -> None:
 
 
 IDENTIFICATION_SCHEMA = Schema("bat identification", (
-    Field("maker", text(), "Who made the bat."),
-    Field("model", text(), "The maker's model name or number."),
-    Field("serial", text(), "The bat's serial number (one physical bat)."),
-    Field("lot", text(), "The production lot or batch."),
+    Field("maker", label(), "Who made the bat."),
+    Field("model", label(), "The maker's model name or number."),
+    Field("serial", label(), "The bat's serial number (one physical bat)."),
+    Field("lot", label(), "The production lot or batch."),
 ))
 
 BAT_SCHEMA = Schema("bat", (
-    Field("name", text(), "Bat name shown in reports.", required=True),
+    Field("name", label(), "Bat name shown in reports.", required=True),
     *HEADER_FIELDS,
     Field("construction", choice("solid", "hollow"), "Solid (wood) or hollow (metal, composite) "
           "barrel.", required=True),

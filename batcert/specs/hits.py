@@ -33,6 +33,7 @@ from batcert.specs.schema import (
     Schema,
     choice,
     integer,
+    label,
     list_of,
     quantity,
     section,
@@ -66,7 +67,7 @@ LAB_SCHEMA = Schema("laboratory", (
 ))
 
 SESSION_SCHEMA = Schema("hit session", (
-    Field("name", text(), "Session name shown in reports.", required=True),
+    Field("name", label(), "Session name shown in reports.", required=True),
     *HEADER_FIELDS,
     Field("bat", text(), "The bat tested: shipped name or path (relative to this file).",
           required=True),

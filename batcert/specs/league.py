@@ -25,6 +25,7 @@ from batcert.specs.schema import (
     Kind,
     Schema,
     choice,
+    label,
     list_of,
     lookup,
     number,
@@ -121,9 +122,9 @@ def _check_rule(v: dict, data: Located, errors: Collector, path: str) -> None:
 
 
 RULE_SCHEMA = Schema("league rule", (
-    Field("id", text(), "Short rule name, unique in the file (`rule` in the JSON).",
+    Field("id", label(), "Short rule name, unique in the file (`rule` in the JSON).",
           required=True),
-    Field("title", text(), "What the rule says, in the report's words."),
+    Field("title", label(), "What the rule says, in the report's words."),
     Field("kind", choice(*RULE_KINDS), "What is checked (see the kinds table).", required=True),
     Field("limit", _raw(), "The limit; its type depends on kind (a length, a plain number for "
           "drop, a metric value for performance)."),
@@ -153,8 +154,8 @@ RULE_SCHEMA = Schema("league rule", (
 ), checks=(_check_rule,))
 
 LEAGUE_SCHEMA = Schema("league", (
-    Field("id", text(), "Short identifier (`batcert league ID`).", required=True),
-    Field("title", text(), "Full name of the league or rule set.", required=True),
+    Field("id", label(), "Short identifier (`batcert league ID`).", required=True),
+    Field("title", label(), "Full name of the league or rule set.", required=True),
     Field("reference", text(), "The rule book or standard the file follows.", required=True),
     Field("version", text(), "Version of this league definition.", required=True),
     Field("description", text(), "Which level of play and which bats the rules cover."),

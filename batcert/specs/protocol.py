@@ -21,6 +21,7 @@ from batcert.specs.schema import (
     Schema,
     choice,
     integer,
+    label,
     list_of,
     lookup,
     number,
@@ -77,7 +78,7 @@ def _check_condition(v: dict, data: Located, errors: Collector, path: str) -> No
 
 
 CONDITION_SCHEMA = Schema("test condition", (
-    Field("name", text(), "Condition name used in tables and JSON.", required=True),
+    Field("name", label(), "Condition name used in tables and JSON.", required=True),
     Field("description", text(), "What the set-up is."),
     Field("pitch_speed", quantity("speed", minimum=0.0), "Ball speed toward the bat before "
           "impact (stored negative, toward the bat, in results)."),
@@ -166,8 +167,8 @@ def _check_limit(v: dict, data: Located, errors: Collector, path: str) -> None:
 
 
 PROTOCOL_SCHEMA = Schema("protocol", (
-    Field("id", text(), "Short identifier (`--protocol ID`).", required=True),
-    Field("title", text(), "Full title.", required=True),
+    Field("id", label(), "Short identifier (`--protocol ID`).", required=True),
+    Field("title", label(), "Full title.", required=True),
     Field("reference", text(), "Standard or paper the protocol follows.", required=True),
     Field("version", text(), "Version of this protocol definition.", required=True),
     Field("description", text(), "What the protocol measures."),

@@ -182,6 +182,28 @@ def integer(*, minimum: int | None = None, maximum: int | None = None) -> Kind:
     return Kind("whole number" + (f" ({', '.join(rng)})" if rng else ""), parse)
 
 
+# characters that reorder what follows them on a terminal or page (bidirectional embeddings,
+# overrides and isolates): a label could show other text than it holds
+_BIDI_CONTROLS = frozenset("\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069")
+
+
+def label() -> Kind:
+    """A name or title: text shown on one line, its runs of spaces, tabs and line breaks
+    collapsed to one space (a line break in a name would start a new line in the terminal or
+    a new block in a Markdown report), without bidirectional controls."""
+    base = text()
+
+    def parse(value: Any, errors: Collector, path: str) -> str:
+        out = " ".join(base.parse(value, errors, path).split())
+        bad = next((c for c in out if c in _BIDI_CONTROLS), None)
+        if bad is not None:
+            raise FieldError(f"contains the character U+{ord(bad):04X}, a bidirectional control "
+                             "that makes a label show other text than it holds")
+        return out
+
+    return Kind("text (one line)", parse)
+
+
 def text() -> Kind:
     def parse(value: Any, errors: Collector, path: str) -> str:
         if isinstance(value, (Located, LocatedList)) or isinstance(value, bool):

@@ -29,6 +29,7 @@ from batcert.specs.schema import (
     Kind,
     Schema,
     choice,
+    label,
     list_of,
     lookup,
     number,
@@ -54,7 +55,7 @@ def _protocol_entry() -> Kind:
 
 
 CLAIM_SCHEMA = Schema("study claim", (
-    Field("id", text(), "Short claim name.", required=True),
+    Field("id", label(), "Short claim name.", required=True),
     Field("statement", text(), "The study's claim in words.", required=True),
     Field("source", text(), "Where the study makes it."),
     Field("check", choice(*CLAIM_CHECKS), "How the model's results test it (the claim checks "
@@ -78,8 +79,8 @@ CLAIM_SCHEMA = Schema("study claim", (
 ))
 
 FIGURE_SCHEMA = Schema("study figure", (
-    Field("id", text(), "Short figure name (file names, claims' `figure`).", required=True),
-    Field("title", text(), "What the figure shows.", required=True),
+    Field("id", label(), "Short figure name (file names, claims' `figure`).", required=True),
+    Field("title", label(), "What the figure shows.", required=True),
     Field("protocol", text(), "Protocol id (of this study) whose test the figure varies.",
           required=True),
     Field("condition", text(), "The protocol's condition that is run.", required=True),
@@ -92,8 +93,8 @@ FIGURE_SCHEMA = Schema("study figure", (
 ))
 
 STUDY_SCHEMA = Schema("study", (
-    Field("id", text(), "Short identifier (`--study ID`).", required=True),
-    Field("title", text(), "Full title.", required=True),
+    Field("id", label(), "Short identifier (`--study ID`).", required=True),
+    Field("title", label(), "Full title.", required=True),
     Field("reference", text(), "The study replayed.", required=True),
     Field("version", text(), "Version of this study definition.", required=True),
     Field("description", text(), "What is compared and how."),

@@ -311,7 +311,7 @@ def run(bat, protocols, samples, seed, engine, out_dir, formats, no_reports, as_
 
     def show(results, written):
         if as_json:
-            console.print_json({"results": [r.to_dict() for r in results]})
+            console.print_results("run", [r.to_dict() for r in results])
             for r in results:
                 console.warnings(r.warnings)
         else:
@@ -351,7 +351,7 @@ def inspect(file, pivot, as_json):
     if kind == "ball":
         from batcert.specs.ball import load_ball
         info = inspecting.inspect_ball(load_ball(path))
-        console.print_json(info) if as_json else _show_ball(info)
+        console.print_results("inspect", [info]) if as_json else _show_ball(info)
         return
     p = None
     if pivot is not None:
@@ -360,7 +360,7 @@ def inspect(file, pivot, as_json):
         except UnitError as exc:
             raise click.BadParameter(str(exc), param_hint="--pivot") from None
     info = inspecting.inspect_bat(load_bat_any(path).built, p)
-    console.print_json(info) if as_json else _show_bat(info)
+    console.print_results("inspect", [info]) if as_json else _show_bat(info)
 
 
 def _show_bat(info: dict) -> None:
@@ -448,7 +448,7 @@ def _show_ball(info: dict) -> None:
 \b
 Examples:
   batcert protocols
-  batcert protocols --json | jq '.[].id'""")
+  batcert protocols --json | jq '.results[].id'""")
 @click.option("--json", "as_json", is_flag=True, help="Print only JSON on stdout.")
 def protocols(as_json):
     """List the shipped protocols."""
@@ -457,7 +457,7 @@ def protocols(as_json):
     from batcert.reports.table import Table
     items = list_protocols()
     if as_json:
-        console.print_json(items)
+        console.print_results("protocols", items)
         return
     console.table(Table(["id", "title", "metric", "impact rule", "limit", "conditions"],
                         [[p["id"], p["title"], p["metric"], p["rule"],
@@ -503,7 +503,7 @@ def validate(files, as_json):
         failed = failed or not entry["ok"]
         report.append(entry)
     if as_json:
-        console.print_json({"files": report})
+        console.print_results("validate", report)
     sys.exit(3 if failed else 0)
 
 
@@ -535,9 +535,11 @@ def _all_warnings(result) -> list[str]:
 
 def _deliver(result, summary, target, fmts, as_json: bool) -> None:
     """Write the reports (see :func:`_write_then_show`), then print JSON or the summary."""
+    command = click.get_current_context().info_name or "batcert"
+
     def show(results, paths):
         if as_json:
-            console.print_json(results[0].to_dict())
+            console.print_results(command, [results[0].to_dict()])
             console.warnings(_all_warnings(results[0]))
         else:
             summary(results[0], paths[0])
@@ -867,7 +869,7 @@ def list_(kind, as_json):
     kinds = [kind] if kind else list(LIST_KINDS)
     data = {k: list_shipped(k) for k in kinds}
     if as_json:
-        console.print_json(data if kind is None else data[kind])
+        console.print_results("list", [{"kind": k, "entries": v} for k, v in data.items()])
         return
     for k, items in data.items():
         console.table(Table(["name", "title", "file"],

@@ -126,6 +126,13 @@ def print_json(data: Any) -> None:
     sys.stdout.flush()
 
 
+def print_results(command: str, results: list[Any]) -> None:
+    """A command's ``--json`` output: the one envelope of every command (docs/results-json.md)
+    around its ``results``."""
+    from batcert.results.serialise import envelope
+    print_json(envelope(command, results))
+
+
 def error(message: str) -> None:
     _emit([("error: ", "bold red"), (message, "")], stderr=True)
 

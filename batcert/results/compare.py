@@ -135,6 +135,8 @@ class StudyFigure:
 
 @dataclass
 class ComparisonResult(Serialisable):
+    KIND = "comparison"
+
     title: str
     study: str | None
     study_reference: str

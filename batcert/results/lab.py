@@ -43,6 +43,8 @@ class LabLocation:
 
 @dataclass
 class LabResult(Serialisable):
+    KIND = "lab"
+
     session: str
     session_path: str
     bat: str

@@ -51,6 +51,8 @@ class BatLeagueResult:
 
 @dataclass
 class LeagueResult(Serialisable):
+    KIND = "league"
+
     league: str
     title: str
     reference: str
@@ -68,7 +70,7 @@ class LeagueResult(Serialisable):
         ok = {"pass", "incomplete"} if allow_not_modelled else {"pass"}
         return all(b.verdict in ok for b in self.bats)
 
-    def to_dict(self) -> dict[str, Any]:
+    def _document(self) -> dict[str, Any]:
         d = asdict(self)  # with each bat's verdict, a property, added
         for b, out in zip(self.bats, d["bats"], strict=True):
             out["verdict"] = b.verdict

@@ -145,6 +145,8 @@ class InputFile:
 
 @dataclass
 class RunResult(Serialisable):
+    KIND = "run"
+
     protocol: str  # protocol id
     protocol_title: str
     protocol_version: str

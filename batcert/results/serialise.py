@@ -16,6 +16,11 @@ from typing import Any, TypeVar, Union, get_args, get_origin, get_type_hints
 
 T = TypeVar("T")
 
+# the JSON contract's name and version: the first key of every result document and of every
+# command's --json output (docs/results-json.md); the number changes when a key changes meaning
+# or goes away, not when one is added
+SCHEMA = "batcert/1"
+
 
 def utc_now() -> str:
     """The ``created`` stamp of every result: now, UTC, ISO 8601 to the second."""
@@ -37,7 +42,7 @@ def map_floats(data: Any, fn: typing.Callable[[float], Any]) -> Any:
 def from_dict(cls: type[T], data: dict[str, Any]) -> T:
     """Rebuild ``cls`` (a dataclass) from :func:`dataclasses.asdict` output; keys not among its
     fields are ignored, missing ones take the field's default."""
-    hints = get_type_hints(cls, vars(sys.modules[cls.__module__]))
+    hints = get_type_hints(cls, None, vars(sys.modules[cls.__module__]))
     kw = {f.name: _convert(hints[f.name], data[f.name])
           for f in dataclasses.fields(cls) if f.name in data}  # type: ignore[arg-type]
     return cls(**kw)
@@ -64,10 +69,27 @@ def _convert(tp: Any, value: Any) -> Any:
     return value
 
 
+def envelope(command: str, results: list[Any]) -> dict[str, Any]:
+    """What every command prints with ``--json``: the schema, the command, the version, and
+    its ``results`` (always a list: result documents, or a listing's entries)."""
+    from batcert import __version__
+    return {"schema": SCHEMA, "command": command, "batcert_version": __version__,
+            "results": results}
+
+
 class Serialisable:
-    """Mixin for result dataclasses: ``to_dict``, ``to_json`` and ``from_dict``."""
+    """Mixin for result dataclasses: ``to_dict``, ``to_json`` and ``from_dict``. A document
+    starts with ``schema`` and its ``kind`` (the class's ``KIND``)."""
+
+    KIND: typing.ClassVar[str] = ""
 
     def to_dict(self) -> dict[str, Any]:
+        return {"schema": SCHEMA, "kind": self._kind(), **self._document()}
+
+    def _kind(self) -> str:
+        return self.KIND
+
+    def _document(self) -> dict[str, Any]:
         return dataclasses.asdict(typing.cast(Any, self))
 
     def to_json(self) -> str:

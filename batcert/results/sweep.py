@@ -63,6 +63,8 @@ class NominalRun:
 
 @dataclass
 class SweepResult(Serialisable):
+    KIND = "sweep"
+
     bat: str
     bat_path: str
     protocol: str
@@ -97,11 +99,14 @@ class SweepResult(Serialisable):
     def values(self) -> list[float] | list[list[float]]:
         return [p[0] for p in self.points] if len(self.axes) == 1 else self.points
 
-    def to_dict(self) -> dict[str, Any]:
+    def _kind(self) -> str:
+        return "design" if self.design is not None else "sweep"
+
+    def _document(self) -> dict[str, Any]:
         """The dataclass, led by ``parameter`` and ``values`` (a list for one axis, a list of
         [value, value] pairs for a grid), then ``metrics``: every quantity's array aligned with
         ``values``."""
-        data = super().to_dict()
+        data = super()._document()
         metrics: dict[str, Any] = dict(self.series)
         metrics["verdict"] = self.verdicts
         for c in self.conditions:

@@ -9,6 +9,8 @@ import sys
 from pathlib import Path
 
 import pytest
+from jsonout import result as result_of
+from jsonout import results
 
 REPO = Path(__file__).resolve().parents[2]
 ASH = REPO / "bats" / "ash-34.yaml"
@@ -48,7 +50,7 @@ def test_protocols_lists_shipped(batcert_cli):
     assert result.exit_code == 0
     for pid in SHIPPED:
         assert pid in result.stdout
-    data = json.loads(batcert_cli("protocols", "--json").stdout)
+    data = results(batcert_cli("protocols", "--json").stdout, "protocols")
     assert sorted(p["id"] for p in data) == SHIPPED
     limits = {p["id"]: p["limit"] for p in data}
     assert limits == {"astm-bpf": 1.15, "ncaa-bbcor": 0.5, "ncaa-besr": 0.728, "proposed": None,
@@ -60,7 +62,7 @@ def test_inspect_ash_json(batcert_cli):
     from Eq. 4, q = I / (M rbar)."""
     result = batcert_cli("inspect", ASH, "--json")
     assert result.exit_code == 0, result.stderr
-    info = json.loads(result.stdout)
+    info = result_of(result.stdout, "inspect")
     rel = 5e-6  # reconciliation is exact; inspect prints 6 significant digits (half a unit)
     assert info["pivot"] == pytest.approx(0.150, rel=rel)
     assert info["mass"] == pytest.approx(0.906, rel=rel)
@@ -75,7 +77,8 @@ def test_inspect_ash_json(batcert_cli):
 
 
 def test_inspect_by_shipped_name_and_pivot(batcert_cli):
-    info = json.loads(batcert_cli("inspect", "ash-34", "--json", "--pivot", "6 in").stdout)
+    info = result_of(batcert_cli("inspect", "ash-34", "--json", "--pivot", "6 in").stdout,
+                     "inspect")
     p = 6 * 0.0254
     assert info["pivot"] == pytest.approx(p)
     rel = 5e-6  # inspect prints 6 significant digits
@@ -92,7 +95,7 @@ def test_inspect_bad_pivot_is_usage_error(batcert_cli):
 def test_inspect_ball(batcert_cli):
     result = batcert_cli("inspect", REPO / "protocols" / "balls" / "nathan-2000.yaml", "--json")
     assert result.exit_code == 0, result.stderr
-    info = json.loads(result.stdout)
+    info = result_of(result.stdout, "inspect")
     assert info["mass"] == 0.145 and info["radius"] == pytest.approx(0.0366)
     # the law's rigid-wall COR is e0 at every speed (energy ratio (1+alpha)/(1+beta) = e0^2)
     assert info["cor"] == pytest.approx([0.53] * len(info["speeds"]), rel=1e-9)

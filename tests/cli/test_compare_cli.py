@@ -8,6 +8,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from jsonout import result as result_of
+
 REPO = Path(__file__).resolve().parents[2]
 ASH = REPO / "bats" / "ash-34.yaml"
 ALU = REPO / "bats" / "aluminium-34.yaml"
@@ -28,7 +30,7 @@ def test_study_json_is_the_only_stdout(batcert_cli):
     result = batcert_cli("compare", ASH, ALU, "--study", "smith2001", "--engine", "rigid",
                          "--json", "--no-reports")
     assert result.exit_code == 0, result.stderr
-    data = json.loads(result.stdout)
+    data = result_of(result.stdout, "compare")
     assert data["study"] == "smith2001" and data["engine"] == "rigid"
     assert data["reference"] == "Ash 34 in (Smith 2001)"
     assert [p["protocol"] for p in data["protocols"]] == STUDY_PROTOCOLS
@@ -50,7 +52,7 @@ def test_study_names_default_bats(batcert_cli):
     result = batcert_cli("compare", "--study", "smith2001", "--engine", "rigid", "--json",
                          "--no-reports", "-p", "ncaa-besr")
     assert result.exit_code == 0, result.stderr
-    data = json.loads(result.stdout)
+    data = result_of(result.stdout, "compare")
     assert [Path(b["path"]).name for b in data["bats"]] == ["ash-34.yaml", "aluminium-34.yaml"]
     assert data["protocols"][-1]["protocol"] == "ncaa-besr"  # extra protocols after the study's
 
@@ -58,7 +60,7 @@ def test_study_names_default_bats(batcert_cli):
 def test_reference_option(batcert_cli):
     result = batcert_cli("compare", ASH, ALU, "-p", "ncaa-besr", "--reference", "aluminium-34",
                          "--engine", "rigid", "--json", "--no-reports")
-    data = json.loads(result.stdout)
+    data = result_of(result.stdout, "compare")
     assert data["reference"] == "Aluminium 34 in (Smith 2001)"
     cond = data["protocols"][0]["conditions"][0]["bats"]
     assert cond["Aluminium 34 in (Smith 2001)"]["relative"] == 0.0
@@ -120,6 +122,6 @@ def test_reference_given_as_an_identical_copy_is_the_same_bat(batcert_cli, tmp_p
     copy.write_bytes(Path(ALU).read_bytes())
     result = batcert_cli("compare", ASH, ALU, "-p", "ncaa-besr", "--reference", copy,
                          "--engine", "rigid", "--json", "--no-reports")
-    data = json.loads(result.stdout)
+    data = result_of(result.stdout, "compare")
     assert data["reference"] == "Aluminium 34 in (Smith 2001)"
     assert len(data["bats"]) == 2

@@ -8,6 +8,7 @@ import subprocess
 import sys
 
 from click.testing import CliRunner
+from jsonout import results
 
 from batcert import __version__
 from batcert.cli import main
@@ -42,7 +43,7 @@ def test_quiet_prints_only_the_verdict(batcert_cli, tmp_path):
 
 
 def test_list_every_kind(batcert_cli):
-    data = json.loads(batcert_cli("list", "--json").stdout)
+    data = {k["kind"]: k["entries"] for k in results(batcert_cli("list", "--json").stdout, "list")}
     assert set(data) == {"bats", "balls", "protocols", "leagues", "studies"}
     names = {k: [i["name"] for i in v] for k, v in data.items()}
     assert "ash-34" in names["bats"] and "collegiate-baseball" in names["balls"]

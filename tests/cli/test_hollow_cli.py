@@ -8,6 +8,7 @@ import json
 from pathlib import Path
 
 import pytest
+from jsonout import result as result_of
 
 from batcert.results.run import RunResult
 
@@ -63,7 +64,7 @@ def test_uncalibrated_barrel_carries_its_range(uncalibrated):
 
 def test_measured_hoop_frequency_calibrates_the_barrel(batcert_cli, tmp_path):
     bat = calibrated_bat(tmp_path, "1650 Hz")
-    inspect = json.loads(batcert_cli("inspect", bat, "--json").stdout)
+    inspect = result_of(batcert_cli("inspect", bat, "--json").stdout, "inspect")
     barrel = inspect["barrel"]
     assert barrel["measured_hoop_frequency_hz"] == pytest.approx(1650.0)
     assert barrel["hoop_frequency_hz"] == pytest.approx(1650.0, rel=1e-6)  # matched exactly

@@ -5,6 +5,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from jsonout import result as result_of
+
 REPO = Path(__file__).resolve().parents[2]
 ASH = REPO / "bats" / "ash-34.yaml"
 ALU = REPO / "bats" / "aluminium-34.yaml"
@@ -24,7 +26,7 @@ def test_mlb_json_shape(batcert_cli):
     result = batcert_cli("league", "mlb", ASH, ALU, "--engine", "rigid", "--json",
                          "--no-reports")
     assert result.exit_code == 1  # aluminium fails MLB's one-piece solid wood rule
-    data = json.loads(result.stdout)
+    data = result_of(result.stdout, "league")
     assert data["league"] == "mlb"
     assert [b["verdict"] for b in data["bats"]] == ["pass", "fail"]
     for bat in data["bats"]:

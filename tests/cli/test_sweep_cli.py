@@ -12,6 +12,7 @@ import shlex
 from pathlib import Path
 
 import pytest
+from jsonout import result as result_of
 
 from batcert.commands.sweep import journal_path, plan_sweep, run_sweep
 from batcert.sweeps import execute as execute_module
@@ -32,8 +33,9 @@ def bbcor_052(fixtures_dir) -> Path:
 
 
 def check_sweep_json(data: dict, n: int) -> None:
-    """The JSON leads with parameter, values and metrics, every metric an array of ``n``."""
-    assert list(data)[:3] == ["parameter", "values", "metrics"]
+    """The document leads with its schema and kind, then parameter, values and metrics, every
+    metric an array of ``n``."""
+    assert list(data)[:5] == ["schema", "kind", "parameter", "values", "metrics"]
     assert len(data["values"]) == n
     assert data["metrics"] and all(len(v) == n for v in data["metrics"].values())
 
@@ -73,7 +75,7 @@ def test_json_only_on_stdout(batcert_cli, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     result = batcert_cli(*SWEEP, "--json")
     assert result.exit_code == 0, result.stderr
-    data = json.loads(result.stdout)  # nothing but the JSON
+    data = result_of(result.stdout, "sweep")  # nothing but the JSON
     check_sweep_json(data, 6)
     assert list(tmp_path.iterdir()) == []  # --json writes no reports without --out
 
@@ -83,7 +85,7 @@ def test_grid_json(batcert_cli):
                          "pitch_speed=50m/s:60m/s:3", "--vary", "bat_angular_speed=0rad/s:20rad/s:2",
                          "--engine", "rigid", "--json")
     assert result.exit_code == 0, result.stderr
-    data = json.loads(result.stdout)
+    data = result_of(result.stdout, "sweep")
     check_sweep_json(data, 6)
     assert data["parameter"] == ["pitch_speed", "bat_angular_speed"]
     assert data["values"] == [[p, w] for p in (50.0, 55.0, 60.0) for w in (0.0, 20.0)]
@@ -140,7 +142,8 @@ def test_design_exit_0_when_the_limit_is_met(batcert_cli, bbcor_052):
     result = batcert_cli("design", "ash-34", "-p", bbcor_052, "--solve", "pitch_speed",
                          "--range", "40m/s:75m/s", "--engine", "rigid", "--json")
     assert result.exit_code == 0, result.stderr
-    data = json.loads(result.stdout)
+    data = result_of(result.stdout, "design")
+    assert data["kind"] == "design"
     check_sweep_json(data, 9)  # the margin curve, --points 9
     (root,) = data["design"]["roots"]
     assert root["value"] == pytest.approx(58.657, abs=0.01)  # the default tolerance, 0.01 m/s

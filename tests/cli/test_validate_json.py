@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
+
+from jsonout import results
 
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures"
 
@@ -13,7 +14,7 @@ def test_validate_json_lists_every_problem_of_every_file(batcert_cli, tmp_path):
     bad.write_text((FIXTURES / "bad" / "bat-three-errors.yaml").read_text(encoding="utf-8"))
     res = batcert_cli("validate", "ash-34", bad, "no-such-thing", "--json")
     assert res.exit_code == 3
-    files = json.loads(res.stdout)["files"]  # stdout is the JSON alone
+    files = results(res.stdout, "validate")  # stdout is the JSON alone
     assert [f["file"] for f in files] == ["ash-34", str(bad), "no-such-thing"]
     assert files[0] == {"file": "ash-34", "kind": "bat", "ok": True, "problems": []}
     assert files[1]["ok"] is False and len(files[1]["problems"]) == 3
@@ -26,4 +27,4 @@ def test_validate_json_lists_every_problem_of_every_file(batcert_cli, tmp_path):
 def test_validate_json_all_good_exits_0(batcert_cli):
     res = batcert_cli("validate", "ash-34", "ncaa-bbcor", "--json")
     assert res.exit_code == 0
-    assert [f["kind"] for f in json.loads(res.stdout)["files"]] == ["bat", "protocol"]
+    assert [f["kind"] for f in results(res.stdout, "validate")] == ["bat", "protocol"]

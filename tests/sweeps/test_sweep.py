@@ -144,7 +144,7 @@ def test_rigid_sweet_spot_needs_a_swing():
 def test_arrays_align_with_values():
     plan = plan_sweep("ash-34", SMITH, ["bat_angular_speed=10rad/s:60rad/s:6"], engine="rigid")
     data = run_sweep(plan).to_dict()
-    assert list(data)[:3] == ["parameter", "values", "metrics"]
+    assert list(data)[:5] == ["schema", "kind", "parameter", "values", "metrics"]
     assert data["parameter"] == "bat_angular_speed"
     assert data["values"] == [10.0, 20.0, 30.0, 40.0, 50.0, 60.0]
     assert all(len(v) == 6 for v in data["metrics"].values())

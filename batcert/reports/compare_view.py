@@ -22,6 +22,10 @@ VERDICT_BADGES = {"pass": Badge("PASS", "pass"), "fail": Badge("FAIL", "fail"),
                   "not-modelled": Badge("NOT MODELLED", "warn"),
                   "not-applicable": Badge("not applicable", "na"),
                   "incomplete": Badge("INCOMPLETE", "warn")}
+# a verdict the model computed from the bat's specification, not a measurement (run, compare,
+# a league's performance rules); a measured verdict (reduce) keeps VERDICT_BADGES
+PREDICTED_BADGES = {**VERDICT_BADGES, "pass": Badge("predicted PASS", "pass"),
+                    "fail": Badge("predicted FAIL", "fail")}
 
 
 def badge(table: dict[str, Badge], key: str | None) -> Badge:
@@ -192,7 +196,7 @@ def _protocol_view(result: ComparisonResult, p: ProtocolComparison,
     if p.limit is not None:
         limit = {"value": fmt.metric_value(p.limit, p.metric),
                  "bats": [(lab, fmt.metric_value(p.aggregate_value[lab], p.metric),
-                           badge(VERDICT_BADGES, p.verdicts[lab])) for lab in labels]}
+                           badge(PREDICTED_BADGES, p.verdicts[lab])) for lab in labels]}
     n = len(p.conditions)
     return {
         "id": p.protocol, "title": p.title, "anchor": "protocol-" + fmt.slugify(p.protocol),

@@ -6,7 +6,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from batcert.reports import format as fmt
-from batcert.reports.compare_view import VERDICT_BADGES, badge
+from batcert.reports.compare_view import PREDICTED_BADGES, VERDICT_BADGES, badge
 from batcert.reports.table import Badge, Table
 from batcert.results.league import LeagueResult, RuleResult
 from batcert.units import Display
@@ -15,8 +15,19 @@ VERDICT_WORDS = {"pass": "pass", "fail": "FAIL", "not-applicable": "not applicab
                  "not-modelled": "NOT MODELLED"}
 
 
+def predicted(rules: Sequence[RuleResult]) -> bool:
+    """Whether a verdict over ``rules`` rests on the model: a performance rule (one that runs a
+    protocol) was judged. Length, drop and barrel rules read the bat file's numbers."""
+    return any(r.protocol and r.verdict in ("pass", "fail") for r in rules)
+
+
+def _badge(verdict: str | None, by_model: bool) -> Badge:
+    return badge(PREDICTED_BADGES if by_model else VERDICT_BADGES, verdict)
+
+
 def overall(bats: Sequence[Any]) -> tuple[Badge, str]:
-    """The headline badge and sentence (the worst bat verdict decides)."""
+    """The headline badge and sentence (the worst bat verdict decides; "predicted" when a
+    performance rule of any bat was judged by the model)."""
     counts = {v: sum(b.verdict == v for b in bats) for v in ("pass", "fail", "incomplete")}
     n = len(bats)
     worst = "fail" if counts["fail"] else "incomplete" if counts["incomplete"] else "pass"
@@ -30,7 +41,11 @@ def overall(bats: Sequence[Any]) -> tuple[Badge, str]:
                                   "modelled, so it is not shown to pass."}[worst]
     else:
         sentence = f"Of {n} bats, " + ", ".join(parts) + "."
-    return VERDICT_BADGES[worst], sentence
+    by_model = any(predicted(b.rules) for b in bats)
+    if by_model:
+        sentence += (" Performance rules are the model's prediction from the bat file, not a "
+                     "measurement.")
+    return _badge(worst, by_model), sentence
 
 
 def rule_row(r: RuleResult) -> dict[str, Any]:
@@ -39,7 +54,7 @@ def rule_row(r: RuleResult) -> dict[str, Any]:
     return {"id": r.rule, "title": r.title, "applies_to": r.applies_to, "kind": r.kind,
             "protocol": r.protocol, "value": fmt.rule_value(r.value, r.unit),
             "limit": fmt.rule_limit(r.limit, r.unit, r.tolerance),
-            "badge": badge(VERDICT_BADGES, r.verdict), "verdict": r.verdict,
+            "badge": _badge(r.verdict, predicted([r])), "verdict": r.verdict,
             "verdict_text": VERDICT_WORDS.get(r.verdict, r.verdict),
             "margin": fmt.rule_margin(r.margin if judged else None, r.unit),
             "source": r.source, "confidence": r.confidence, "note": r.note}
@@ -53,7 +68,8 @@ def league_view(result: LeagueResult) -> dict[str, Any]:
     for i, b in enumerate(result.bats):
         anchor = f"bat-{i + 1}"
         counts = {v: sum(r.verdict == v for r in b.rules) for v in verdicts}
-        summary.append({"bat": b.bat, "anchor": anchor, "badge": badge(VERDICT_BADGES, b.verdict),
+        summary.append({"bat": b.bat, "anchor": anchor,
+                        "badge": _badge(b.verdict, predicted(b.rules)),
                         "counts": [counts[v] for v in verdicts]})
         f = b.facts
         cls = f.get("material_class") or "class unknown"
@@ -64,7 +80,7 @@ def league_view(result: LeagueResult) -> dict[str, Any]:
                  ("Smallest diameter", fmt.quantity(f["min_diameter"], "length", 4)),
                  ("Construction", Display(str(f["construction"]), None)),
                  ("Material", Display(f"{f['material']} ({cls})", None))]
-        bats.append({"bat": b.bat, "anchor": anchor, "badge": badge(VERDICT_BADGES, b.verdict),
+        bats.append({"bat": b.bat, "anchor": anchor, "badge": _badge(b.verdict, predicted(b.rules)),
                      "path": b.path, "sha256": b.sha256, "facts": facts,
                      "rules": [rule_row(r) for r in b.rules],
                      "not_modelled": [(r.rule, r.note or "no reason given")

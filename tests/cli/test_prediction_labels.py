@@ -36,3 +36,26 @@ def test_a_lab_certificate_stays_a_measured_verdict(batcert_cli):
                       "--no-reports")
     assert res.stdout.splitlines()[0].startswith("PASS  Lab certificate:")
     assert "predicted" not in res.stdout.splitlines()[0]
+
+
+def test_a_league_performance_rule_is_a_prediction_and_a_dimension_rule_is_not(batcert_cli,
+                                                                                tmp_path):
+    res = batcert_cli("league", "ncaa", "bbcor-alloy-34", "--engine", "rigid", "--out",
+                      tmp_path)
+    first = res.stdout.splitlines()[0]
+    assert first.startswith("predicted FAIL"), first  # the model's BBCOR decides
+    lines = [ln.split() for ln in res.stdout.splitlines() if ln.strip().startswith("verdict")]
+    assert ["verdict", "PASS"] in lines and ["verdict", "predicted", "FAIL"] in lines
+    [md] = tmp_path.glob("league--*.md")
+    assert "predicted FAIL" in md.read_text(encoding="utf-8")
+    assert "model's prediction from the bat file" in md.read_text(encoding="utf-8")
+    wood = batcert_cli("league", "mlb", "ash-34", "--engine", "rigid", "--no-reports")
+    assert wood.stdout.startswith("PASS")  # no performance rule: the file's numbers decide
+
+
+def test_a_comparison_limit_verdict_is_a_prediction(batcert_cli, tmp_path):
+    batcert_cli("compare", "ash-34", "aluminium-34", "-p", "ncaa-bbcor", "--engine", "rigid",
+                "--out", tmp_path)
+    [md] = tmp_path.glob("compare--*.md")
+    text = md.read_text(encoding="utf-8")
+    assert "predicted FAIL" in text and " FAIL" not in text.replace("predicted FAIL", "")

@@ -144,7 +144,8 @@ def _report_dir(out_dir: Path | None, no_reports: bool, as_json: bool) -> Path |
     return target
 
 
-def _write_then_show(results: list, target: Path | None, fmts: list[str], show) -> None:
+def _write_then_show(results: list, target: Path | None, fmts: list[str], show,
+                     stems: list[str] | None = None) -> None:
     """Write every result's reports (each set whole or not at all), then ``show(results,
     paths)``. If writing fails, the results are still shown (the verdict is not lost) before
     the failure ends the command (exit 4)."""
@@ -154,7 +155,7 @@ def _write_then_show(results: list, target: Path | None, fmts: list[str], show) 
         from batcert.reports.write import OutputError, write_reports
         try:
             for i, r in enumerate(results):
-                paths[i] = write_reports(r, target, fmts)
+                paths[i] = write_reports(r, target, fmts, None if stems is None else stems[i])
         except OutputError as exc:
             failure = exc
     show(results, paths)
@@ -201,13 +202,13 @@ def _check_figures_dir(figures_dir: Path | None) -> None:
         check_output_dir(figures_dir)
 
 
-def _figures(result, figures_dir: Path | None) -> None:
+def _figures(result, figures_dir: Path | None, stem: str | None = None) -> None:
     if figures_dir is None:
         return
     from batcert.reports.figures import figures_of, write_figures
     from batcert.reports.write import check_output_dir, report_stem
     check_output_dir(figures_dir)
-    paths = write_figures(figures_of(result), figures_dir, report_stem(result))
+    paths = write_figures(figures_of(result), figures_dir, stem or report_stem(result))
     console.note(f"wrote {len(paths)} figure files to {figures_dir}")
 
 
@@ -261,7 +262,7 @@ Examples:
   batcert run ash-34 -p ncaa-bbcor -p ncaa-besr --out reports/ash
   batcert run ash-34 -p proposed --engine rigid --json | jq .results[0].value
   batcert run ash-34 -p ncaa-bbcor --uncertainty 1000""")
-@click.argument("bat", shell_complete=_complete("bat"))
+@click.argument("bats", nargs=-1, required=True, shell_complete=_complete("bat"))
 @click.option("--protocol", "-p", "protocols", multiple=True, required=True,
               shell_complete=_complete("protocol"),
               help="Shipped protocol id (see `batcert list protocols`) or a protocol YAML path; "
@@ -277,17 +278,19 @@ Examples:
 @_output_options("results")
 @FIGURES_OPTION
 @_guard
-def run(bat, protocols, samples, seed, engine, out_dir, formats, no_reports, as_json,
+def run(bats, protocols, samples, seed, engine, out_dir, formats, no_reports, as_json,
         figures_dir):
-    """Run BAT (a bat YAML path or shipped bat name) under one or more protocols, print the
-    verdict and write Markdown, HTML and JSON reports."""
-    from batcert.commands.inputs import load_bat_any, load_protocol_any
+    """Run each BAT (a bat YAML path or shipped bat name; several for a batch) under one or
+    more protocols, print the predicted verdicts and write Markdown, HTML and JSON reports
+    (one set per bat and protocol)."""
+    from batcert.commands.inputs import load_protocol_any
     from batcert.commands.run import run as run_bat
     fmts = _formats(formats)
     clock = _Clock()
-    loaded = load_bat_any(bat)
+    batch = _load_batch(bats)
     inputs = [load_protocol_any(p) for p in protocols]  # all inputs validated before running
-    console.log(f"bat {loaded.path}; protocols " + ", ".join(str(p.protocol.path) for p in inputs))
+    console.log("bats " + ", ".join(str(b.path) for b in batch) + "; protocols "
+                + ", ".join(str(p.protocol.path) for p in inputs))
     clock.lap("inputs")
     target = _report_dir(out_dir, no_reports, as_json)
     _check_figures_dir(figures_dir)
@@ -296,18 +299,23 @@ def run(bat, protocols, samples, seed, engine, out_dir, formats, no_reports, as_
         raise UsageProblem("--seed needs --uncertainty N")
     if samples is not None:
         from batcert.commands.run import check_uncertainty
-        check_uncertainty(loaded, inputs, samples, seed)
-    with console.progress("running") as bar:
-        results = run_bat(loaded, inputs, engine, on_step=_stepper(bar))
+        for loaded in batch:
+            check_uncertainty(loaded, inputs, samples, seed)
+    results = []
+    for i, loaded in enumerate(batch):
+        what = "running" if len(batch) == 1 else f"bat {i + 1} of {len(batch)}"
+        with console.progress(what) as bar:
+            ran = run_bat(loaded, inputs, engine, on_step=_stepper(bar))
+        clock.lap("engine")
+        if samples is not None:
+            from batcert.commands.run import with_uncertainty
+            with console.progress("Monte Carlo") as bar:
+                ran = with_uncertainty(loaded, inputs, ran, samples, seed, engine,
+                                       on_progress=_counter(bar, "draws"))
+            clock.lap("uncertainty")
+        results += ran
     console.log(f"engine {engine}: " + "; ".join(f"{k} {v}" for k, v in
                                                  results[0].engine_settings.items()))
-    clock.lap("engine")
-    if samples is not None:
-        from batcert.commands.run import with_uncertainty
-        with console.progress("Monte Carlo") as bar:
-            results = with_uncertainty(loaded, inputs, results, samples, seed, engine,
-                                       on_progress=_counter(bar, "draws"))
-        clock.lap("uncertainty")
 
     def show(results, written):
         if as_json:
@@ -317,12 +325,49 @@ def run(bat, protocols, samples, seed, engine, out_dir, formats, no_reports, as_
         else:
             for r, paths in zip(results, written, strict=True):
                 console.run_summary(r, paths)
-    _write_then_show(results, target, fmts, show)
-    for r in results:
-        _figures(r, figures_dir)
+            if len(batch) > 1:
+                judged = [r.verdict for r in results if r.verdict]
+                console.note_out(f"{len(batch)} bats, {len(results)} runs: "
+                                 f"{judged.count('pass')} predicted pass, "
+                                 f"{judged.count('fail')} predicted fail"
+                                 + (f", {len(results) - len(judged)} without a limit"
+                                    if len(judged) < len(results) else ""))
+    stems = _run_stems(results, [b for b in batch for _ in inputs])
+    _write_then_show(results, target, fmts, show, stems)
+    for r, stem in zip(results, stems, strict=True):
+        _figures(r, figures_dir, stem)
     clock.lap("reports")
     clock.report()
     sys.exit(1 if any(r.verdict == "fail" for r in results) else 0)
+
+
+def _load_batch(bats: tuple[str, ...]) -> list:
+    """Every bat of a ``run``, loaded before anything runs; the same file twice is a usage
+    error (its reports would be written twice)."""
+    import os
+
+    from batcert.commands.inputs import load_bat_any
+    from batcert.errors import UsageProblem
+    batch = [load_bat_any(b) for b in bats]
+    seen: dict[tuple[int, int], str] = {}
+    for given, loaded in zip(bats, batch, strict=True):
+        st = os.stat(loaded.path)
+        key = (st.st_dev, st.st_ino)
+        if key in seen:
+            raise UsageProblem(f"the bat {given} is given twice (also as {seen[key]})")
+        seen[key] = given
+    return batch
+
+
+def _run_stems(results: list, bats: list) -> list[str]:
+    """The report stem of each run result (docs/results-json.md): ``<bat>--<protocol>``; when
+    two bats of a batch share a name, each also names its file
+    (``<bat>--<file stem>--<protocol>``)."""
+    from batcert.reports.write import report_stem, run_stem_with_file
+    stems = [report_stem(r) for r in results]
+    clash = {s for s in stems if stems.count(s) > 1}
+    return [run_stem_with_file(r, Path(b.path).stem) if s in clash else s
+            for r, b, s in zip(results, bats, stems, strict=True)]
 
 
 @main.command(epilog=CHECK_EXIT_CODES + """

@@ -59,6 +59,13 @@ def run_stem(result: Any) -> str:
     return _short(f"{slugify(result.bat, 'bat')}--{slugify(result.protocol, 'protocol')}")
 
 
+def run_stem_with_file(result: Any, file_stem: str) -> str:
+    """``<bat-slug>--<bat file stem>--<protocol-id>``: a run's stem when bats of one batch
+    share a name."""
+    return _short(f"{slugify(result.bat, 'bat')}--{slugify(file_stem, 'bat')}--"
+                  f"{slugify(result.protocol, 'protocol')}")
+
+
 def _stem(kind: str, what: str, bats: str) -> str:
     return _short(f"{kind}--{slugify(what)}--{slugify(bats)}")
 

@@ -252,6 +252,8 @@ Shell completion: see docs/cli.md (e.g. eval "$(_BATCERT_COMPLETE=bash_source ba
 def main(verbose: int, quiet: bool) -> None:
     """Certify baseball bats against test protocols with a reduced-order impact engine."""
     console.configure(verbose=0 if quiet else verbose, quiet=quiet)
+    from batcert.specs.resolve import set_notifier
+    set_notifier(console.note)
 
 
 @main.command(epilog=EXIT_CODES + """

@@ -42,4 +42,5 @@ def run_league(league: str, bats: list[str], engine: str = "flexible",
                 p = protocols[rule.id]
                 runs[rule.id] = results[(i, p.protocol.path, p.protocol.id)]
         per_bat.append((f, runs))
-    return evaluate_league(spec, per_bat, eng.name if eng else "none (no performance rule ran)")
+    result = evaluate_league(spec, per_bat, eng.name if eng else "none (no performance rule ran)")
+    return replace(result, path=display_path(result.path))

@@ -8,6 +8,7 @@ A value that names an existing file (or ends in .yaml/.yml) is taken as a path.
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable
 from pathlib import Path
 
 _PACKAGE = Path(__file__).resolve().parents[1]
@@ -56,8 +57,57 @@ class NotFound(LookupError):
     pass
 
 
+# where resolve() says which of two differing copies of a shipped file it used (the command
+# line sets it to print a note; None: silent)
+_notify: Callable[[str], None] | None = None
+
+
+def set_notifier(notify: Callable[[str], None] | None) -> None:
+    """Have :func:`resolve` tell ``notify`` when a shipped name finds a differing copy in the
+    source checkout the command runs in, and which one it used."""
+    global _notify
+    _notify = notify
+
+
+def _checkout_of_cwd() -> Path | None:
+    """The batcert source checkout the working directory is in (a folder above it, or itself,
+    whose pyproject.toml names the project batcert), or None."""
+    try:
+        here = Path.cwd().resolve()
+    except OSError:
+        return None
+    for d in (here, *here.parents):
+        try:
+            text = (d / "pyproject.toml").read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError):
+            continue
+        return d if 'name = "batcert"' in text else None
+    return None
+
+
+def _prefer_checkout(kind: str, value: str, found: Path) -> Path:
+    """A shipped name found in the installed package: the working directory's checkout's copy
+    instead when it differs (an edit in progress), said through the notifier."""
+    checkout = _checkout_of_cwd()
+    if checkout is None or checkout.resolve() == _CHECKOUT.resolve():
+        return found
+    for sub in KINDS[kind]:
+        mine = checkout / sub / found.name
+        try:
+            if mine.is_file() and mine.read_bytes() != found.read_bytes():
+                if _notify is not None:
+                    _notify(f"{kind} {value}: using this checkout's {sub}/{found.name}, which "
+                            f"differs from the installed batcert's copy ({found})")
+                return mine
+        except OSError:
+            return found
+    return found
+
+
 def resolve(kind: str, value: str, relative_to: Path | None = None) -> Path:
-    """Path of a shipped name or a user path; raise :class:`NotFound` with the choices."""
+    """Path of a shipped name or a user path; raise :class:`NotFound` with the choices. A
+    shipped name run inside a batcert source checkout whose copy of the file differs from the
+    installed one resolves to the checkout's copy (and says so, :func:`set_notifier`)."""
     candidate = Path(value)
     if relative_to is not None and not candidate.is_absolute():
         rel = relative_to.parent / candidate
@@ -67,10 +117,10 @@ def resolve(kind: str, value: str, relative_to: Path | None = None) -> Path:
         return candidate
     names = shipped_names(kind)
     if value in names:
-        return names[value]
+        return _prefer_checkout(kind, value, names[value])
     folded = {n.casefold(): n for n in names}  # shipped names compare case-insensitively
     if value.casefold() in folded:
-        return names[folded[value.casefold()]]
+        return _prefer_checkout(kind, value, names[folded[value.casefold()]])
     if candidate.suffix in (".yaml", ".yml") or "/" in value:
         raise NotFound(f"{kind} file not found: {value}")
     close = suggest(value, list(names))
@@ -97,10 +147,18 @@ def suggest(value: str, names: list[str]) -> str | None:
 
 def display_path(path: str | Path) -> str:
     """How reports name an input file: ``shipped:protocols/proposed.yaml`` for a file that
-    ships with batcert (wherever it is installed), else the path as given."""
+    ships with batcert (wherever it is installed); a user's file by the path as given, an
+    absolute one inside the working directory relative to it (``bats/my-bat.yaml``)."""
     p = Path(path).resolve()
     sub = _shipped_dirs().get(p.parent)
-    return str(path) if sub is None else f"shipped:{sub}/{p.name}"
+    if sub is not None:
+        return f"shipped:{sub}/{p.name}"
+    if Path(path).is_absolute():
+        try:
+            return str(Path(path).relative_to(Path.cwd()))
+        except (ValueError, OSError):
+            pass
+    return str(path)
 
 
 def resolve_display(shown: str) -> Path:

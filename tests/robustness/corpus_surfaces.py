@@ -306,7 +306,7 @@ def sweeps() -> None:
     design("design-range-zero-width", ["--solve", "wall", "--range", "100%:100%", "--points", "3"])
     design("design-range-letters", ["--solve", "wall", "--range", "a:b"])
     design("design-range-negative", ["--solve", "wall", "--range", "-10%:10%"])
-    design("design-range-empty", ["--solve", "wall", "--range", ""])
+    design("design-range-empty", ["--solve", "wall", "--range", "", "--points", "3"])
     design("design-points-2", ["--solve", "wall", "--points", "2"])
     design("design-points-1002", ["--solve", "wall", "--points", "1002"])
     design("design-tolerance-zero", ["--solve", "wall", "--range", "80%:120%", "--points", "3", "--tolerance", "0 mm"])
@@ -464,7 +464,7 @@ def inject() -> None:
         case(f"inj-hits-note-{pname}", c, f"hits note and ball id: {pname} payload", "session",
              SESSION, main="session.yaml", expect="valid",
              files={"hits.csv": HEAD + rows(row="{n}," + q + ",60.80,13.00,6,yes," + q)},
-             commands=[*red, ["reduce", "{f}", "-p", "ncaa-bbcor", *RIGID, "--json"]])
+             commands=red)
     case("inj-session-description-html", c, "session description and reference: raw HTML block", "session",
          SESSION + f"description: {y(PAYLOADS['md-html-block'])}\nreference: {y(PAYLOADS['script'])}\n",
          main="session.yaml", expect="valid", files={"hits.csv": HITS}, commands=red)
@@ -490,9 +490,10 @@ def inject() -> None:
          sub(SESSION, "name: Lab session (surfaces)", f"name: {y(math)}"), main="session.yaml",
          expect="valid", files={"hits.csv": HITS},
          commands=[["reduce", "{f}", "-p", "ncaa-bbcor", *RIGID, "--no-reports", "--figures", "{d}/fig"]])
-    case("inj-figures-sweep-mathtext", c, "--figures of a sweep whose bat name is broken mathtext", "bat",
+    case("inj-sweep-mathtext", c, "a sweep whose bat name is broken mathtext (reports; the figures are "
+         "drawn by run, reduce above)", "bat",
          sub(HOLLOW, "name: Aluminium 34 in (fuzz)", f"name: {y(math)}"), expect="valid",
-         commands=[["sweep", "{f}", "-p", "ncaa-bbcor", *RIGID, "--vary", "wall=90%:110%:2", "--no-reports", "--figures", "{d}/fig"]])
+         commands=[["sweep", "{f}", "-p", "ncaa-bbcor", *RIGID, "--vary", "wall=90%:110%:2", "--out", "{out}"]])
     # text on the terminal from the command line itself
     command("inj-cli-bat-ansi", c, ["run", "\x1b[31mash-34\x1b[0m", "-p", "ncaa-bbcor", *RIGID, "--no-reports"])
     command("inj-cli-protocol-ansi", c, ["run", "ash-34", "-p", "\x1b]0;x\x07ncaa", *RIGID, "--no-reports"])
@@ -619,7 +620,7 @@ def monte_carlo() -> None:
          sub(BALL, "  - [85 ft/s, 0.546]", "  - [85 ft/s, 0.99 +/- 0.05]"), files={"proto.yaml": corpus.BALL_PROTO},
          commands=[["run", "ash-34", "-p", "{d}/proto.yaml", *RIGID, "--uncertainty", "3", "--json", "--out", "{out}"]])
     mc("mc-two-protocols", "3", desc="--uncertainty 3 under two protocols", extra=("-p", "ncaa-besr"))
-    mc("mc-figures", "3", desc="--uncertainty 3 with --figures", extra=("--figures", "{d}/fig"))
+    mc("mc-format-md", "3", desc="--uncertainty 3 with Markdown reports only", extra=("--format", "md"))
 
 
 def build() -> None:

@@ -844,11 +844,21 @@ def reduce(session, protocol, bat, decision_rule, calibrated_bat, engine, out_di
     target = _report_dir(out_dir, no_reports, as_json)
     _check_figures_dir(figures_dir)
     if calibrated_bat is not None:  # before any work: never an input, never a device
+        if engine != "flexible":
+            from batcert.errors import UsageProblem
+            raise UsageProblem(f"--write-calibration needs the flexible engine (the {engine} "
+                               "engine has no barrel to calibrate)")
         _check_calibration_target(calibrated_bat, _session_inputs(session, bat))
     result = run_reduce(session, protocol, decision_rule, engine, bat)
+    # the calibrated bat is made before any report is written: if there is none (a solid bat,
+    # nothing certified), the usage error leaves nothing behind
+    calibration = None if calibrated_bat is None else _calibration_text(result, session,
+                                                                         calibrated_bat)
     _deliver(result, console.lab_summary, target, fmts, as_json)
-    if calibrated_bat is not None:
-        _write_calibration(result, session, calibrated_bat)
+    if calibration is not None:
+        from batcert.reports.write import atomic_write_text
+        atomic_write_text(calibrated_bat, calibration)
+        console.note(f"wrote the calibrated bat to {calibrated_bat}")
     _figures(result, figures_dir)
     sys.exit(0 if result.verdict in ("pass", None) and result.value is not None else 1)
 
@@ -880,13 +890,12 @@ def _check_calibration_target(target: Path, inputs: list[Path]) -> None:
     check_output_file(target, inputs, "the calibrated bat")
 
 
-def _write_calibration(result, session: str, target: Path) -> None:
-    """The bat file with the fitted barrel (the softest fit when there are several), written
-    atomically and read back to check it is a valid bat file; the target is checked again
-    against every input the reduction read (the ball and protocol files too)."""
+def _calibration_text(result, session: str, target: Path) -> str:
+    """The bat file with the fitted barrel (the softest fit when there are several), read back
+    to check it is a valid bat file; the target is checked again against every input the
+    reduction read (the ball and protocol files too). A usage error when there is no fit."""
     from batcert.commands.reduce import calibrated_bat_text
     from batcert.errors import UsageProblem
-    from batcert.reports.write import atomic_write_text
     from batcert.specs.resolve import resolve_display
     try:
         text = calibrated_bat_text(result, session)
@@ -894,8 +903,7 @@ def _write_calibration(result, session: str, target: Path) -> None:
         raise UsageProblem(f"--write-calibration: {exc}") from None
     _check_calibration_target(target, [*_session_inputs(session, None),
                                        *(resolve_display(i["path"]) for i in result.inputs)])
-    atomic_write_text(target, text)
-    console.note(f"wrote the calibrated bat to {target}")
+    return text
 
 
 @main.command("list", epilog=CHECK_EXIT_CODES + """

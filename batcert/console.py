@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import shutil
 import sys
 from collections.abc import Sequence
@@ -106,8 +107,20 @@ def _width() -> int:
     return shutil.get_terminal_size((140, 24)).columns
 
 
+# control characters other than tab and line feed (ESC starts a terminal escape sequence, CR
+# overwrites a line): shown as \xNN, so text from a file or the command line cannot drive the
+# terminal
+_CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]")
+
+
+def _visible(text: str) -> str:
+    return _CONTROL.sub(lambda m: f"\\x{ord(m.group()):02x}", text)
+
+
 def _emit(parts: Sequence[tuple[str, str]], stderr: bool = False) -> None:
-    """One line made of (text, style) parts: styled on a terminal, plain otherwise."""
+    """One line made of (text, style) parts: styled on a terminal, plain otherwise; control
+    characters shown escaped."""
+    parts = [(_visible(text), style) for text, style in parts]
     stream = sys.stderr if stderr else sys.stdout
     if _terminal(stream):
         from rich.text import Text

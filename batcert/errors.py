@@ -85,8 +85,10 @@ class Collector:
         self.problems.append(Problem(self.file, line, field_, message, column))
 
     def raise_if_any(self) -> None:
+        """Raise every problem at once, in the order of the file's lines (problems without a
+        line, about the file as a whole, first)."""
         if self.problems:
-            raise InputError(list(self.problems))
+            raise InputError(sorted(self.problems, key=lambda p: p.line or 0))
 
 
 class ModelError(ValueError):

@@ -15,7 +15,7 @@ from batcert.conventions import DEFAULT_PIVOT
 from batcert.errors import Collector, InputError, Problem
 from batcert.methods.metrics import AGGREGATES, METRIC_BOUND, METRICS
 from batcert.methods.rules import IMPACT_RULES
-from batcert.specs.common import Source, load_checked, spec_from, split_field
+from batcert.specs.common import Source, spec_from, split_field
 from batcert.specs.schema import (
     Field,
     Schema,
@@ -29,6 +29,8 @@ from batcert.specs.schema import (
     quantity,
     section,
     text,
+    validate,
+    where,
 )
 from batcert.specs.yamlio import Located, load_yaml
 
@@ -296,8 +298,25 @@ def duplicate_condition_names(values: dict[str, Any], data: Located, errors: Col
 def load_protocol(path: str | Path) -> ProtocolSpec:
     """Read and validate a protocol file; raise InputError with every problem of the file."""
     data = load_yaml(path)
-    values = load_checked(path, PROTOCOL_SCHEMA, data)
     errors = Collector(path)
-    duplicate_condition_names(values, data, errors)
+    values = validate(data, PROTOCOL_SCHEMA, errors)  # every field's problem, then the ones below
+    if values is not None:
+        if values.get("conditions") is not None:
+            duplicate_condition_names(values, data, errors)
+        _check_ball_exists(values.get("ball"), data, errors, Path(path))
     errors.raise_if_any()
+    assert values is not None
     return protocol_from_values(values, Source.of(path, data))
+
+
+def _check_ball_exists(ball: str | None, data: Located, errors: Collector, path: Path) -> None:
+    """The ball a protocol names is a shipped ball or a file (relative to the protocol):
+    said with the file's other problems, not after they are fixed."""
+    from batcert.specs.resolve import NotFound, resolve
+    if not ball:
+        return
+    try:
+        resolve("ball", ball, relative_to=path)
+    except NotFound as exc:
+        line, col = where(data, "ball")
+        errors.add(line, "ball", str(exc), col)

@@ -6,6 +6,8 @@ from pathlib import Path
 
 from jsonout import results
 
+REPO = Path(__file__).resolve().parents[2]
+
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures"
 
 
@@ -28,3 +30,19 @@ def test_validate_json_all_good_exits_0(batcert_cli):
     res = batcert_cli("validate", "ash-34", "ncaa-bbcor", "--json")
     assert res.exit_code == 0
     assert [f["kind"] for f in results(res.stdout, "validate")] == ["bat", "protocol"]
+
+
+def test_a_protocol_with_four_problems_shows_them_in_one_round(batcert_cli, tmp_path):
+    """A unit error, an unreadable speed, a misspelt metric and an unknown ball: all four at
+    once, in line order (the unknown ball came only once the others were fixed)."""
+    text = (REPO / "protocols" / "ncaa-bbcor.yaml").read_text(encoding="utf-8")
+    for old, new in [("pivot: 6 in", "pivot: 6 kg"), ("ball: collegiate-baseball", "ball: nope"),
+                     ("    pitch_speed: 136 mph", "    pitch_speed: fast"),
+                     ("metric: bbcor\n", "metric: bbcorr\n")]:
+        assert old in text
+        text = text.replace(old, new)
+    (tmp_path / "p.yaml").write_text(text, encoding="utf-8")
+    res = batcert_cli("validate", tmp_path / "p.yaml", "--json")
+    [entry] = results(res.stdout, "validate")
+    fields = [p["field"] for p in entry["problems"]]
+    assert fields == ["pivot", "ball", "conditions[0].pitch_speed", "metric"]

@@ -133,6 +133,17 @@ verdict. For the `exit-speed` metric the limit and tolerance are speeds with the
 All problems of a file are reported at once, each as `file:line: field: message` with the
 offending line quoted; unknown fields and names get a did-you-mean suggestion. Nothing is run or
 written when an input is invalid, and `batcert` exits with code 3 (see [cli.md](cli.md)).
+
+### File limits
+
+Every input file (a YAML spec or session, a hits CSV) must be a regular file: a FIFO, a device
+(`/dev/zero`) or a socket is refused before it is opened, so nothing waits for a writer. A file
+larger than its cap is refused, and no more than the cap is ever read:
+
+| file | cap |
+|---|---|
+| YAML (bat, ball, protocol, league, study, lab session) | 2 MB |
+| hits CSV ([lab-reduction.md](lab-reduction.md)) | 16 MB (100,000 hits take about 6 MB) |
 """
 
 BAT_INTRO = """\

@@ -38,7 +38,7 @@ from batcert.specs.schema import (
     section,
     text,
 )
-from batcert.specs.yamlio import Located, load_yaml
+from batcert.specs.yamlio import Located, load_yaml, read_input
 from batcert.units import PLAUSIBLE
 
 UNCERTAINTY_SCHEMA = Schema("uncertainties", (
@@ -105,6 +105,9 @@ COLUMNS: dict[str, tuple[str | None, bool]] = {
 _HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*(.+?)\s*\])?\s*$")
 _UNIT_AND_END = re.compile(r"^(.*?)\s+from\s+(tip|knob|pivot)$")
 MAX_HITS = 100_000
+# A hits CSV larger than this is refused before it is parsed: 100,000 hits with short notes take
+# about 6 MB (documented in docs/inputs.md and docs/lab-reduction.md).
+MAX_BYTES = 16_000_000
 
 
 @dataclass(frozen=True)
@@ -159,23 +162,34 @@ def session_for_hits(csv_path: str | Path, bat: str, ball: str, pivot: float) ->
     path = Path(csv_path)
     data = Located()
     data.file, data.line, data.key_pos, data.value_pos = str(path), 1, {}, {}
-    try:
-        head = next((ln for ln in path.read_text(encoding="utf-8").splitlines()
-                     if ln.strip() and not ln.lstrip().startswith("#")), "")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError([Problem(str(path), None, "", f"cannot read the hits: {exc}")]) from None
+    raw = read_hits_bytes(path)
+    head = next((ln for ln in _text(raw, path).splitlines()
+                 if ln.strip() and not ln.lstrip().startswith("#")), "")
     end = re.search(r"impact_location\s*\[[^\]]*\bfrom\s+(tip|knob|pivot)\s*\]", head)
     defaults = {f.name: f.default for f in SESSION_SCHEMA.fields}
     return spec_from(SessionSpec, {**defaults, "name": f"hits {path.name}", "bat": bat,
                                    "ball": ball, "pivot": pivot, "hits": path.name,
                                    "location_from": end.group(1) if end else "tip"},
-                     source=Source(str(path), sha256_of(path), data))
+                     source=Source(str(path), sha256_of(raw), data))
 
 
 def load_session(path: str | Path) -> SessionSpec:
     data = load_yaml(path)
     values = load_checked(path, SESSION_SCHEMA, data)
     return spec_from(SessionSpec, values, source=Source.of(path, data))
+
+
+def read_hits_bytes(path: Path) -> bytes:
+    """The bytes of a hits CSV: a regular file of at most :data:`MAX_BYTES`."""
+    return read_input(path, MAX_BYTES, "a hits CSV", f"a hits CSV of {MAX_HITS:,} hits takes "
+                      "about 6 MB (is this the right file?)")
+
+
+def _text(raw: bytes, path: Path) -> str:
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError([Problem(str(path), None, "", f"cannot read the hits: {exc}")]) from None
 
 
 def _cell_columns(raw: str) -> list[int]:
@@ -206,12 +220,9 @@ def load_hits(path: str | Path, location_from: str = "tip",
     """Read a hits CSV; raise :class:`InputError` with every problem (line, column, field)."""
     from batcert.specs.common import sha256_of
     path = Path(path)
-    try:
-        raw = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError([Problem(str(path), None, "", f"cannot read the hits: {exc}")]) from None
+    raw = read_hits_bytes(path)
     errors = Collector(path)
-    lines = raw.splitlines()
+    lines = _text(raw, path).splitlines()
     rows = [(n + 1, line) for n, line in enumerate(lines) if line.strip()
             and not line.lstrip().startswith("#")]
     if not rows:
@@ -335,6 +346,6 @@ def load_hits(path: str | Path, location_from: str = "tip",
     if not out["line"]:
         errors.add(head_line, "", "the file has a header but no hits")
     errors.raise_if_any()
-    return Hits(str(path), sha256_of(path), np.asarray(out["hit"]), out["ball"],
+    return Hits(str(path), sha256_of(raw), np.asarray(out["hit"]), out["ball"],
                 np.asarray(out["vi"]), np.asarray(out["vr"]), np.asarray(out["r"]),
                 np.asarray(out["w2"]), np.asarray(out["valid"], bool), out["note"], out["line"])

@@ -136,6 +136,7 @@ written when an input is invalid, and `batcert` exits with code 3 (see [cli.md](
 
 ### File limits
 
+Input files are UTF-8 text; a byte-order mark at the start (as spreadsheets write) is ignored.
 Every input file (a YAML spec or session, a hits CSV) must be a regular file: a FIFO, a device
 (`/dev/zero`) or a socket is refused before it is opened, so nothing waits for a writer. A file
 larger than its cap is refused, and no more than the cap is ever read:

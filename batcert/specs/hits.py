@@ -38,7 +38,7 @@ from batcert.specs.schema import (
     section,
     text,
 )
-from batcert.specs.yamlio import Located, load_yaml, read_input
+from batcert.specs.yamlio import Located, decode_text, load_yaml, read_input
 from batcert.units import PLAUSIBLE
 
 UNCERTAINTY_SCHEMA = Schema("uncertainties", (
@@ -163,7 +163,7 @@ def session_for_hits(csv_path: str | Path, bat: str, ball: str, pivot: float) ->
     data = Located()
     data.file, data.line, data.key_pos, data.value_pos = str(path), 1, {}, {}
     raw = read_hits_bytes(path)
-    head = next((ln for ln in _text(raw, path).splitlines()
+    head = next((ln for ln in decode_text(raw, str(path)).splitlines()
                  if ln.strip() and not ln.lstrip().startswith("#")), "")
     end = re.search(r"impact_location\s*\[[^\]]*\bfrom\s+(tip|knob|pivot)\s*\]", head)
     defaults = {f.name: f.default for f in SESSION_SCHEMA.fields}
@@ -183,13 +183,6 @@ def read_hits_bytes(path: Path) -> bytes:
     """The bytes of a hits CSV: a regular file of at most :data:`MAX_BYTES`."""
     return read_input(path, MAX_BYTES, "a hits CSV", f"a hits CSV of {MAX_HITS:,} hits takes "
                       "about 6 MB (is this the right file?)")
-
-
-def _text(raw: bytes, path: Path) -> str:
-    try:
-        return raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputError([Problem(str(path), None, "", f"cannot read the hits: {exc}")]) from None
 
 
 def _cell_columns(raw: str) -> list[int]:
@@ -222,7 +215,7 @@ def load_hits(path: str | Path, location_from: str = "tip",
     path = Path(path)
     raw = read_hits_bytes(path)
     errors = Collector(path)
-    lines = _text(raw, path).splitlines()
+    lines = decode_text(raw, str(path)).splitlines()
     rows = [(n + 1, line) for n, line in enumerate(lines) if line.strip()
             and not line.lstrip().startswith("#")]
     if not rows:

@@ -89,3 +89,28 @@ def test_validate_checks_a_session_and_its_hits(tmp_path):
     (tmp_path / "s.yaml").write_text(session, encoding="utf-8")
     bad = CliRunner().invoke(main, ["validate", str(tmp_path / "s.yaml")])
     assert bad.exit_code == 3 and "hits.csv:2: rebound_speed: expected a number" in bad.output
+
+
+def test_a_byte_order_mark_is_accepted(tmp_path):
+    """Spreadsheets write a UTF-8 byte-order mark before the header; it is not part of it."""
+    path = tmp_path / "hits.csv"
+    path.write_bytes(b"\xef\xbb\xbf" + f"{HEAD}\n1,B1,136,15.5,6,yes,\n".encode())
+    h = load_hits(path)
+    assert h.line == [2] and h.inbound_speed[0] == pytest.approx(136 * 0.44704, abs=1e-12)
+
+
+def test_a_bare_csv_with_a_byte_order_mark_keeps_its_header_end(tmp_path):
+    from batcert.specs.hits import session_for_hits
+    path = tmp_path / "hits.csv"
+    path.write_bytes(b"\xef\xbb\xbf" + HEAD.replace("from tip", "from knob").encode() + b"\n")
+    assert session_for_hits(path, "aluminium-34", "collegiate-baseball", 0.15).location_from \
+        == "knob"
+
+
+def test_a_byte_that_is_not_utf8_is_pointed_at(tmp_path):
+    path = tmp_path / "hits.csv"
+    path.write_bytes(f"{HEAD}\n1,B1,136,15.5,6,yes,caf".encode() + b"\xe9\n")
+    with pytest.raises(InputError) as err:
+        load_hits(path)
+    (problem,) = err.value.problems
+    assert (problem.line, problem.column) == (2, 24) and "0xe9 is not UTF-8" in problem.message

@@ -3,6 +3,7 @@ than a file kind's cap, and nothing blocks (a FIFO is refused before it is opene
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 from contextlib import contextmanager
@@ -122,3 +123,18 @@ def test_the_cli_refuses_a_fifo_named_anywhere(batcert_cli, tmp_path, fifo):
             assert lines[0] == "invalid input"
             assert lines[1] == f"{named}: is not a regular file (a FIFO, a device or a socket); " \
                 f"give {'a hits CSV' if named.suffix == '.csv' else 'a YAML file'}", argv
+
+
+def test_a_byte_order_mark_is_accepted_everywhere(batcert_cli, tmp_path):
+    """A session YAML and its hits CSV as a spreadsheet saves them (UTF-8 with a BOM), and a
+    bare CSV: reduced as without it."""
+    bom = b"\xef\xbb\xbf"
+    (tmp_path / "hits.csv").write_bytes(bom + (LAB / "synthetic-exact.csv").read_bytes())
+    (tmp_path / "session.yaml").write_bytes(bom + (LAB / "synthetic-exact.yaml").read_bytes()
+                                            .replace(b"hits: synthetic-exact.csv", b"hits: hits.csv"))
+    for argv in (["reduce", tmp_path / "session.yaml"],
+                 ["reduce", tmp_path / "hits.csv", "--bat", "aluminium-34"]):
+        res = batcert_cli(*argv, "-p", "ncaa-bbcor", "--engine", "rigid", "--json")
+        assert res.exit_code in (0, 1), res.stderr
+        # the synthetic truth, to the speeds' rounding (docs/lab-reduction.md)
+        assert json.loads(res.stdout)["value"] == pytest.approx(0.495, abs=2e-5)

@@ -185,15 +185,45 @@ def read_hits_bytes(path: Path) -> bytes:
                       "about 6 MB (is this the right file?)")
 
 
+def _split_row(raw: str, line: int, errors: Collector) -> tuple[list[str], list[int]] | None:
+    """The fields of one CSV line and the 1-based column where each starts; None (and a
+    problem at the line) when the line is not well-formed CSV: a quote opens a quoted field only
+    as its first character, the field ends at the closing quote (a quote inside is written
+    ``""``), and a field holds at most ``csv.field_size_limit()`` characters."""
+    try:
+        cells = next(csv.reader([raw], strict=True))
+    except csv.Error as exc:
+        text_ = str(exc)
+        if "field limit" in text_:
+            message = (f"a field longer than {csv.field_size_limit():,} characters (a hits row "
+                       "is a few dozen)")
+        elif "end of data" in text_:
+            message = ("a quoted field is not closed on this line: a '\"' that starts a field "
+                       "must end it, and a '\"' inside it is written '\"\"'")
+        elif "expected after" in text_:
+            message = ("text after a quoted field's closing '\"': quote the whole field, "
+                       "writing a '\"' inside it as '\"\"'")
+        else:
+            message = f"not a well-formed CSV row ({text_})"
+        errors.add(line, "", message)
+        return None
+    return cells, _cell_columns(raw)
+
+
 def _cell_columns(raw: str) -> list[int]:
-    """1-based character column where each comma-separated field of a raw line starts."""
-    starts, col, quoted = [1], 1, False
-    for ch in raw:
-        col += 1
-        if ch == '"':
-            quoted = not quoted
-        elif ch == "," and not quoted:
-            starts.append(col)
+    """1-based column where each field of a well-formed CSV line starts: a quote opens a quoted
+    field only as a field's first character, and ``""`` inside one is a quote, as for
+    :mod:`csv`."""
+    starts, quoted, first, closed = [1], False, True, False
+    for col, ch in enumerate(raw, start=1):
+        if quoted:
+            quoted, closed = ch != '"', ch == '"'
+            continue
+        if ch == '"' and (first or closed):  # opens the field, or "" inside it
+            quoted = True
+        elif ch == ",":
+            starts.append(col + 1)
+        first, closed = ch == ",", False
     return starts
 
 
@@ -221,8 +251,10 @@ def load_hits(path: str | Path, location_from: str = "tip",
     if not rows:
         raise InputError([Problem(str(path), None, "", "no header row and no hits")])
     head_line, head_raw = rows[0]
-    header = next(csv.reader([head_raw]))
-    head_cols = _cell_columns(head_raw)
+    split = _split_row(head_raw, head_line, errors)
+    errors.raise_if_any()
+    assert split is not None
+    header, head_cols = split
     columns: dict[str, tuple[int, float | None]] = {}  # name -> (index, SI factor)
     named: set[str] = set()  # known columns in the header, also those with a problem
     for j, cell in enumerate(header):
@@ -275,8 +307,10 @@ def load_hits(path: str | Path, location_from: str = "tip",
     out: dict[str, list] = {k: [] for k in ("hit", "ball", "vi", "vr", "r", "w2", "valid",
                                            "note", "line")}
     for line_no, row_raw in rows[1:]:
-        cells = next(csv.reader([row_raw]))
-        starts = _cell_columns(row_raw)
+        split = _split_row(row_raw, line_no, errors)
+        if split is None:
+            continue
+        cells, starts = split
         if len(cells) != len(header):
             errors.add(line_no, "", f"{len(cells)} fields, the header has {len(header)}")
             continue

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from batcert.errors import InputError
 from batcert.specs.hits import load_hits
@@ -114,3 +116,66 @@ def test_a_byte_that_is_not_utf8_is_pointed_at(tmp_path):
         load_hits(path)
     (problem,) = err.value.problems
     assert (problem.line, problem.column) == (2, 24) and "0xe9 is not UTF-8" in problem.message
+
+
+@pytest.mark.parametrize("row, message", [
+    ('1,B1,"136,15.5,6,yes,', "a quoted field is not closed"),
+    ('1,B1,136,"15.5,6,yes,x', "a quoted field is not closed"),
+    ('1,B1,"136"x,15.5,6,yes,', "text after a quoted field's closing"),
+    ("1,B1,136,15.5,6,yes," + "x" * 140_000, "a field longer than 131,072 characters"),
+    ('1,B1,136,15.5,6,yes,"' + "x" * 140_000 + '"', "a field longer than 131,072 characters"),
+])
+def test_a_malformed_csv_row_is_a_problem_at_its_line(tmp_path, row, message):
+    with pytest.raises(InputError) as err:
+        load_hits(write(tmp_path, f"{HEAD}\n1,B1,136,15.5,6,yes,\n{row}\n"))
+    (problem,) = err.value.problems
+    assert problem.line == 3 and message in problem.message
+
+
+def test_a_malformed_header_is_a_problem_at_its_line(tmp_path):
+    with pytest.raises(InputError) as err:
+        load_hits(write(tmp_path, f'# lab export\n"hit,{HEAD[4:]}\n1,B1,136,15.5,6,yes,\n'))
+    (problem,) = err.value.problems
+    assert problem.line == 2 and "not closed" in problem.message
+
+
+def test_quotes_inside_fields_keep_every_column_in_place(tmp_path):
+    """A quote inside an unquoted field is text (``B"1``, ``a"b``), ``""`` is a quote inside a
+    quoted field; the columns of the problems after them are still right."""
+    row = '1,B"1,136,15.5,6,maybe,"a ""quoted"", note"'
+    row2 = '2,"B,2",136,15.5,6,maybe,a"b'
+    with pytest.raises(InputError) as err:
+        load_hits(write(tmp_path, f"{HEAD}\n{row}\n{row2}\n"))
+    got = [(p.line, p.field, p.column) for p in err.value.problems]
+    assert got == [(2, "valid", row.index("maybe") + 1), (3, "valid", row2.index("maybe") + 1)]
+    head = 'hit,ball,"inbound_speed [m/s]",rebound_speed [m/s],impact_location [in from tip],va"lid'
+    with pytest.raises(InputError) as err:
+        load_hits(write(tmp_path, f"{head}\n1,B1,136,15.5,6,yes\n"))
+    assert [(p.field, p.column) for p in err.value.problems] == [('va"lid', head.index('va"') + 1)]
+
+
+@given(st.lists(st.text(alphabet='ab,"x ', max_size=6), min_size=1, max_size=5))
+def test_the_columns_agree_with_the_csv_module(fields):
+    """For any row the csv module writes, each column found is where its field starts."""
+    import csv
+    import io
+
+    from batcert.specs.hits import _cell_columns
+    buffer = io.StringIO()
+    csv.writer(buffer, lineterminator="").writerow(fields)
+    raw = buffer.getvalue()
+    starts = _cell_columns(raw)
+    assert len(starts) == len(fields)
+    for start, end, field in zip(starts, [*starts[1:], len(raw) + 2], fields, strict=True):
+        cell = raw[start - 1:end - 2]
+        assert (next(csv.reader([cell], strict=True)) or [""]) == [field]
+
+
+def test_the_cli_reports_a_malformed_row_without_a_traceback(tmp_path, batcert_cli):
+    path = write(tmp_path, f'{HEAD}\n1,B1,136,15.5,6,yes,\n2,B1,1.0,"2.0\n')
+    res = batcert_cli("reduce", path, "--bat", "aluminium-34", "-p", "ncaa-bbcor",
+                      "--engine", "rigid", "--no-reports")
+    assert res.exit_code == 3
+    lines = res.stderr.splitlines()
+    assert lines[0] == "invalid input"
+    assert lines[1].startswith(f"{path}:3: a quoted field is not closed on this line")

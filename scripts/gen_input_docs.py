@@ -55,6 +55,9 @@ unit. Conversions use 1 in = 0.0254 m, 1 mph = 0.44704 m/s, 1 oz = 28.349523125 
 - A bare number for a dimensioned field (`length: 34`) is an error: the file must say its unit.
   Plain numbers are used only where the table's type says "number" (COR values, Poisson's
   ratio, the contact-law `k1` and `alpha`, limits of dimensionless metrics).
+  They are written bare (`0.546`, not `0.546 dimensionless` or `54.6 percent`); for a
+  dimensioned field, `34 dimensionless`, `1 percent` or a unit that does not convert (`5 dB`)
+  is refused like any unit of the wrong dimension.
 - Angular speeds must name an angle per time: `rad/s`, `rpm`, `deg/s`, `revolution/s`.
   `Hz` and `1/s` are refused as ambiguous (pint would read `1 Hz` as 1 rad/s).
 - Frequencies are cycles per time (`Hz`, `kHz`); an angular unit such as `rad/s` is refused.

@@ -179,3 +179,11 @@ def test_the_cli_reports_a_malformed_row_without_a_traceback(tmp_path, batcert_c
     lines = res.stderr.splitlines()
     assert lines[0] == "invalid input"
     assert lines[1].startswith(f"{path}:3: a quoted field is not closed on this line")
+
+
+def test_a_dimensionless_unit_in_the_header_is_a_problem(tmp_path):
+    with pytest.raises(InputError) as err:
+        load_hits(write(tmp_path, HEAD.replace("[mph]", "[dimensionless]") + "\n1,B1,1,1,6,yes,\n"))
+    (problem,) = err.value.problems
+    assert (problem.line, problem.field, problem.column) == (1, "inbound_speed", 10)
+    assert "'1 dimensionless' is not a speed" in problem.message

@@ -105,6 +105,11 @@ COLUMNS: dict[str, tuple[str | None, bool]] = {
 _HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*(.+?)\s*\])?\s*$")
 _UNIT_AND_END = re.compile(r"^(.*?)\s+from\s+(tip|knob|pivot)$")
 MAX_HITS = 100_000
+# The inbound speeds a hit may have [m/s], given or from gate times: a ball cannon fires at tens of
+# m/s, and ball COR tests start at 1 m/s; below, e_A = v_r / v_i grows without bound (a gate
+# time of 1e-300 s or a speed of 1e-300 m/s made infinite reduced values). Rebound speeds lie in
+# [0, the upper bound]. Documented in docs/lab-reduction.md.
+INBOUND_SPEED_RANGE = (1.0, PLAUSIBLE["speed"])
 # A hits CSV larger than this is refused before it is parsed: 100,000 hits with short notes take
 # about 6 MB (documented in docs/inputs.md and docs/lab-reduction.md).
 MAX_BYTES = 16_000_000
@@ -345,15 +350,34 @@ def load_hits(path: str | Path, location_from: str = "tip",
                 errors.add(line_no, name, "must be above zero", column=starts[columns[name][0]])
             return value
 
+        def speed_range(name: str, v: float, low: float, line_no=line_no,
+                        starts=starts) -> float:
+            """``v`` [m/s] if within [low, the largest plausible speed]; otherwise a problem
+            at the column ``name`` it came from (a speed, or a gate time) and NaN."""
+            high = INBOUND_SPEED_RANGE[1]
+            if np.isnan(v) or low <= v <= high:
+                return v
+            which, span = name.split("_")[0], f"{low:g}-{high:g} m/s"
+            message = (f"gives {which} speed {v:.4g} m/s over the {gate_spacing:g} m gate "
+                       f"spacing, outside {span} (check the time and its unit)"
+                       if name.endswith("gate_time") else f"{v:.4g} m/s is outside {span}, "
+                       f"the {which} speeds of a ball-cannon test (a unit or a typo?)")
+            errors.add(line_no, name, message, column=starts[columns[name][0]])
+            return float("nan")
+
         if speeds:
             vi = positive("inbound_speed", number("inbound_speed"))
+            vi = speed_range("inbound_speed", vi, INBOUND_SPEED_RANGE[0]) if vi > 0 else vi
             vr = number("rebound_speed")
         else:
             ti = positive("inbound_gate_time", number("inbound_gate_time"))
             tr = positive("rebound_gate_time", number("rebound_gate_time"))
             assert gate_spacing is not None
-            vi = gate_spacing / ti if ti > 0 else float("nan")  # a time <= 0 is reported above
-            vr = gate_spacing / tr if tr > 0 else float("nan")
+            # a time <= 0 is reported above; a tiny one gives a speed reported here
+            vi = speed_range("inbound_gate_time", gate_spacing / ti, INBOUND_SPEED_RANGE[0]) \
+                if ti > 0 else float("nan")
+            vr = speed_range("rebound_gate_time", gate_spacing / tr, 0.0) \
+                if tr > 0 else float("nan")
         if np.isfinite(vr) and vr < 0:
             errors.add(line_no, "rebound_speed", "is a magnitude: must not be negative",
                        column=starts[columns["rebound_speed"][0]] if speeds else None)

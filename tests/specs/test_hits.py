@@ -187,3 +187,37 @@ def test_a_dimensionless_unit_in_the_header_is_a_problem(tmp_path):
     (problem,) = err.value.problems
     assert (problem.line, problem.field, problem.column) == (1, "inbound_speed", 10)
     assert "'1 dimensionless' is not a speed" in problem.message
+
+
+GATES = "hit,ball,inbound_gate_time [s],rebound_gate_time [s],impact_location [in from tip]"
+
+
+@pytest.mark.parametrize("row, field, message", [
+    # 0.5 m in 1e-300 s: 5e299 m/s, which made the reduction's values and JSON non-finite
+    ("1,B1,1e-300,0.04,6", "inbound_gate_time", "gives inbound speed 5e+299 m/s over the 0.5 m "
+                                                "gate spacing, outside 1-300 m/s"),
+    ("1,B1,0.0082,1e-300,6", "rebound_gate_time", "gives rebound speed 5e+299 m/s"),
+    ("1,B1,5e-324,0.04,6", "inbound_gate_time", "gives inbound speed inf m/s"),  # 0.5 / 5e-324
+    ("1,B1,0.0082,1e-310,6", "rebound_gate_time", "outside 0-300 m/s"),
+    ("1,B1,1000,0.04,6", "inbound_gate_time", "gives inbound speed 0.0005 m/s"),
+])
+def test_a_gate_time_giving_an_impossible_speed_is_a_problem(tmp_path, row, field, message):
+    with pytest.raises(InputError) as err:
+        load_hits(write(tmp_path, f"{GATES}\n{row}\n"), gate_spacing=0.5)
+    (problem,) = err.value.problems
+    assert (problem.line, problem.field) == (2, field) and message in problem.message
+    assert problem.column == (6 if field == "inbound_gate_time" else row.index(",", 5) + 2)
+
+
+@pytest.mark.parametrize("speed, message", [
+    ("1e-300", "1e-300 m/s is outside 1-300 m/s, the inbound speeds of a ball-cannon test"),
+    ("0.5", "0.5 m/s is outside 1-300 m/s"),
+    ("1e308", "beyond any plausible speed"),
+])
+def test_an_inbound_speed_outside_a_ball_cannons_range_is_a_problem(tmp_path, speed, message):
+    head = HEAD.replace("[mph]", "[m/s]")
+    with pytest.raises(InputError) as err:
+        load_hits(write(tmp_path, f"{head}\n1,B1,{speed},13,6,yes,\n"))
+    (problem,) = err.value.problems
+    assert (problem.line, problem.field, problem.column) == (2, "inbound_speed", 6)
+    assert message in problem.message

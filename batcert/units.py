@@ -201,15 +201,18 @@ def parse_quantity(value: object, dimension: str) -> float:
     except Exception:  # pint's parser raises many types (e.g. tokenize.TokenError for "in)")
         raise UnitError(f"cannot read {value!r}: not a unit expression (e.g. '{example}')") from None
     _check_spelling(value, unit_text, ureg, example)
-    q = ureg.Quantity(number, unit)
     # pint treats radian as dimensionless, so rad/s, rpm, Hz and 1/s all match 1/[time]; the
     # angle check below keeps angular speeds (rad/s, rpm) and frequencies (Hz) apart
     try:
-        si = float(q.to(si_unit).magnitude)
+        si = float(ureg.Quantity(number, unit).to(si_unit).magnitude)
     except pint.errors.DimensionalityError:
         raise UnitError(
             f"{value!r} is not a {dimension.replace('_', ' ')} (expected units like '{example}')"
         ) from None
+    except Exception:  # pint cannot convert it: a logarithmic unit (dB, neper), an exponent
+        # whose factor overflows ("degree ** 1e9")
+        raise UnitError(f"cannot read {value!r}: not a unit that converts to {si_unit} "
+                        f"(e.g. '{example}')") from None
     _check_angle(value, unit, dimension, example)
     return _plausible(si, value, dimension)
 
@@ -221,11 +224,14 @@ def _check_spelling(value: str, unit_text: str, ureg, example: str) -> None:
     for word in re.findall(r"[A-Za-z_]+", unit_text):
         try:
             name = ureg.get_name(word)
+            if not name:  # "dimensionless": a pure number, which the dimension check refuses
+                continue
+            symbol = ureg.get_symbol(word)
         except Exception:  # a word pint's parser passed but cannot name ("per"): not a unit
             raise UnitError(f"cannot read {value!r}: unknown unit {word!r} "
                             f"(e.g. '{example}')") from None
         unit = ureg._units.get(name)
-        spelled = {name, ureg.get_symbol(word), *(unit.aliases if unit is not None else ())}
+        spelled = {name, symbol, *(unit.aliases if unit is not None else ())}
         plurals = {w + ("es" if w.endswith(("s", "sh", "ch", "x", "z")) else "s")
                    for w in spelled}
         if word not in spelled | plurals:

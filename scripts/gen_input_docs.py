@@ -55,6 +55,9 @@ unit. Conversions use 1 in = 0.0254 m, 1 mph = 0.44704 m/s, 1 oz = 28.349523125 
 - A bare number for a dimensioned field (`length: 34`) is an error: the file must say its unit.
   Plain numbers are used only where the table's type says "number" (COR values, Poisson's
   ratio, the contact-law `k1` and `alpha`, limits of dimensionless metrics).
+  They are written bare (`0.546`, not `0.546 dimensionless` or `54.6 percent`); for a
+  dimensioned field, `34 dimensionless`, `1 percent` or a unit that does not convert (`5 dB`)
+  is refused like any unit of the wrong dimension.
 - Angular speeds must name an angle per time: `rad/s`, `rpm`, `deg/s`, `revolution/s`.
   `Hz` and `1/s` are refused as ambiguous (pint would read `1 Hz` as 1 rad/s).
 - Frequencies are cycles per time (`Hz`, `kHz`); an angular unit such as `rad/s` is refused.
@@ -133,6 +136,18 @@ verdict. For the `exit-speed` metric the limit and tolerance are speeds with the
 All problems of a file are reported at once, each as `file:line: field: message` with the
 offending line quoted; unknown fields and names get a did-you-mean suggestion. Nothing is run or
 written when an input is invalid, and `batcert` exits with code 3 (see [cli.md](cli.md)).
+
+### File limits
+
+Input files are UTF-8 text; a byte-order mark at the start (as spreadsheets write) is ignored.
+Every input file (a YAML spec or session, a hits CSV) must be a regular file: a FIFO, a device
+(`/dev/zero`) or a socket is refused before it is opened, so nothing waits for a writer. A file
+larger than its cap is refused, and no more than the cap is ever read:
+
+| file | cap |
+|---|---|
+| YAML (bat, ball, protocol, league, study, lab session) | 2 MB |
+| hits CSV ([lab-reduction.md](lab-reduction.md)) | 16 MB (100,000 hits take about 6 MB) |
 """
 
 BAT_INTRO = """\

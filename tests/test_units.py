@@ -58,6 +58,18 @@ def test_conversions(text, dimension, si, rel):
     ("53 1/s", "angular_speed", "ambiguous as an angular speed"),
     ("1100 rad/s", "frequency", "is an angular speed; give a frequency"),
     ("2500 rpm", "frequency", "is an angular speed"),
+    # pint's oddities: each a UnitError, never pint's own exception (issue 24)
+    ("0.5 dimensionless", "length", "'0.5 dimensionless' is not a length"),
+    ("5 dimensionless", "speed", "'5 dimensionless' is not a speed"),
+    ("1 percent", "length", "'1 percent' is not a length"),
+    ("5 meter ** 2", "length", "'5 meter ** 2' is not a length"),
+    ("1e400 m", "length", "outside the range accepted for a length"),
+    ("nan m", "length", "expected a number then a unit"),
+    ("0x10 m", "length", "unknown unit 'x10'"),
+    ("5 Δm", "length", "unknown unit 'Δm'"),
+    ("5 neper cycle", "length", "not a unit that converts to m"),  # pint: AssertionError
+    ("5 dB", "length", "not a length"),
+    ("5 degree ** 1e9 lbf", "force", "not a unit that converts to N"),  # pint: OverflowError
 ])
 def test_refused(value, dimension, message):
     with pytest.raises(UnitError) as exc:

@@ -177,12 +177,14 @@ def _sensitivities(session: LabSession, used: list[int], metric: str) -> dict[st
 
 
 def _monte_carlo(session: LabSession, used: list[int], metric: str, values: np.ndarray,
-                 limit: float | None, seed: int = 2026) -> tuple[float, tuple[float, float],
-                                                             float | None]:
+                 limit: float | None, seed: int = 2026
+                 ) -> tuple[float | None, tuple[float, float] | None, float | None, int]:
     """JCGM 101: the certified mean with its inputs drawn from their distributions (common
     speed, location, MOI and mass offsets, normal; the hits' scatter as a scaled and shifted
-    t with n - 1 degrees of freedom); the standard deviation, the 95 % interval and the
-    fraction within the limit."""
+    t with n - 1 degrees of freedom); the standard deviation, the 95 % interval, the
+    fraction within the limit and the number of draws left out because they reduce to no
+    finite value (an input drawn to zero, e.g. an inbound speed when the speed's uncertainty
+    is comparable to the speed itself)."""
     from batcert.methods.reduction import reduce_hits
     u = session.spec.uncertainty or {}
     rng = np.random.default_rng(seed)
@@ -201,9 +203,15 @@ def _monte_carlo(session: LabSession, used: list[int], metric: str, values: np.n
     if n > 1:  # the scatter of the hits about their mean: Student's t, n - 1 dof (JCGM 101 6.4.9)
         s = float(np.std(values[used], ddof=1))
         mean = mean + s / math.sqrt(n) * rng.standard_t(n - 1, draws)
+    finite = np.isfinite(mean)
+    mean = mean[finite]
+    dropped = int(draws - finite.sum())
+    std = float(np.std(mean)) if mean.size else math.inf  # overflows for draws near 1e154
+    if not math.isfinite(std):
+        return None, None, None, dropped
     lo, hi = np.quantile(mean, [0.025, 0.975])
     within = float(np.mean(mean <= limit)) if limit is not None else None
-    return float(np.std(mean)), (float(lo), float(hi)), within
+    return std, (float(lo), float(hi)), within, dropped
 
 
 def certify(session: LabSession, protocol: ProtocolSpec,
@@ -252,7 +260,16 @@ def certify(session: LabSession, protocol: ProtocolSpec,
     k_cov = float(student.ppf(0.5 + COVERAGE / 2, dof)) if math.isfinite(dof) else 1.959964
     mc_std = mc_interval = conformance = None
     if used:
-        mc_std, mc_interval, conformance = _monte_carlo(session, used, metric, values, limit)
+        mc_std, mc_interval, conformance, dropped = _monte_carlo(session, used, metric, values,
+                                                                 limit)
+        if dropped:
+            warnings.append(f"{dropped:,} of {MC_DRAWS:,} Monte Carlo draws reduce to no finite "
+                            "value and are left out: an input's uncertainty is comparable to "
+                            "the input itself")
+        if mc_std is None:
+            warnings.append("the Monte Carlo check gives no finite spread (an input's "
+                            "uncertainty is comparable to the input itself); only the GUM "
+                            "uncertainty is stated")
     return red, Certified(value, used, chosen, reasons, scan, u_a, u_b, u_c, dof, k_cov,
                           k_cov * u_c, mc_std, mc_interval, conformance, warnings)
 

@@ -66,8 +66,28 @@ def _check_on_bat(hits: Hits, r: np.ndarray, tip: float, origin: str) -> None:
 
 
 def reduce_session(session: LabSession) -> HitReduction:
-    """Every hit of the session reduced (docs/lab-reduction.md)."""
+    """Every hit of the session reduced (docs/lab-reduction.md); a hit whose reduced values
+    are not all finite is an input problem at its line (the CSV's ranges keep them finite; a
+    ball whose COR law fails at a hit's speed would not)."""
     h = session.hits
-    return reduce_hits(h.inbound_speed, h.rebound_speed, session.impact_location,
-                       session.moi_pivot, session.ball.model.mass, session.ball.model.cor,
-                       h.bat_angular_speed_after)
+    red = reduce_hits(h.inbound_speed, h.rebound_speed, session.impact_location,
+                      session.moi_pivot, session.ball.model.mass, session.ball.model.cor,
+                      h.bat_angular_speed_after)
+    _check_finite(red, h)
+    return red
+
+
+def _check_finite(red: HitReduction, hits: Hits) -> None:
+    from dataclasses import fields
+
+    from batcert.errors import Collector
+    errors = Collector(hits.path)
+    measured = np.isfinite(hits.bat_angular_speed_after)  # NaN by design where not measured
+    for i in range(len(hits.line)):
+        bad = [f.name for f in fields(red) if not np.isfinite(getattr(red, f.name)[i])
+               and (measured[i] or not f.name.startswith("measured_"))]
+        if bad:
+            errors.add(hits.line[i], "", f"hit {hits.hit[i]:g} reduces to a non-finite "
+                       f"{', '.join(bad)} (inbound speed {hits.inbound_speed[i]:.4g} m/s, the "
+                       f"ball's COR there {red.ball_cor[i]:.4g})")
+    errors.raise_if_any()

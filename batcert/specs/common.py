@@ -27,8 +27,10 @@ HEADER_FIELDS = (
 T = TypeVar("T")
 
 
-def sha256_of(path: str | Path) -> str:
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+def sha256_of(source: str | Path | bytes) -> str:
+    """The SHA-256 of a file, or of the bytes already read from one."""
+    data = source if isinstance(source, bytes) else Path(source).read_bytes()
+    return hashlib.sha256(data).hexdigest()
 
 
 @dataclass(frozen=True)

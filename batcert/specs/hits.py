@@ -39,7 +39,7 @@ from batcert.specs.schema import (
     section,
     text,
 )
-from batcert.specs.yamlio import Located, load_yaml
+from batcert.specs.yamlio import Located, decode_text, load_yaml, read_input
 from batcert.units import PLAUSIBLE
 
 UNCERTAINTY_SCHEMA = Schema("uncertainties", (
@@ -106,6 +106,14 @@ COLUMNS: dict[str, tuple[str | None, bool]] = {
 _HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[\s*(.+?)\s*\])?\s*$")
 _UNIT_AND_END = re.compile(r"^(.*?)\s+from\s+(tip|knob|pivot)$")
 MAX_HITS = 100_000
+# The inbound speeds a hit may have [m/s], given or from gate times: a ball cannon fires at tens of
+# m/s, and ball COR tests start at 1 m/s; below, e_A = v_r / v_i grows without bound (a gate
+# time of 1e-300 s or a speed of 1e-300 m/s made infinite reduced values). Rebound speeds lie in
+# [0, the upper bound]. Documented in docs/lab-reduction.md.
+INBOUND_SPEED_RANGE = (1.0, PLAUSIBLE["speed"])
+# A hits CSV larger than this is refused before it is parsed: 100,000 hits with short notes take
+# about 6 MB (documented in docs/inputs.md and docs/lab-reduction.md).
+MAX_BYTES = 16_000_000
 
 
 @dataclass(frozen=True)
@@ -160,17 +168,15 @@ def session_for_hits(csv_path: str | Path, bat: str, ball: str, pivot: float) ->
     path = Path(csv_path)
     data = Located()
     data.file, data.line, data.key_pos, data.value_pos = str(path), 1, {}, {}
-    try:
-        head = next((ln for ln in path.read_text(encoding="utf-8").splitlines()
-                     if ln.strip() and not ln.lstrip().startswith("#")), "")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError([Problem(str(path), None, "", f"cannot read the hits: {exc}")]) from None
+    raw = read_hits_bytes(path)
+    head = next((ln for ln in decode_text(raw, str(path)).splitlines()
+                 if ln.strip() and not ln.lstrip().startswith("#")), "")
     end = re.search(r"impact_location\s*\[[^\]]*\bfrom\s+(tip|knob|pivot)\s*\]", head)
     defaults = {f.name: f.default for f in SESSION_SCHEMA.fields}
     return spec_from(SessionSpec, {**defaults, "name": f"hits {path.name}", "bat": bat,
                                    "ball": ball, "pivot": pivot, "hits": path.name,
                                    "location_from": end.group(1) if end else "tip"},
-                     source=Source(str(path), sha256_of(path), data))
+                     source=Source(str(path), sha256_of(raw), data))
 
 
 def load_session(path: str | Path) -> SessionSpec:
@@ -179,15 +185,51 @@ def load_session(path: str | Path) -> SessionSpec:
     return spec_from(SessionSpec, values, source=Source.of(path, data))
 
 
+def read_hits_bytes(path: Path) -> bytes:
+    """The bytes of a hits CSV: a regular file of at most :data:`MAX_BYTES`."""
+    return read_input(path, MAX_BYTES, "a hits CSV", f"a hits CSV of {MAX_HITS:,} hits takes "
+                      "about 6 MB (is this the right file?)")
+
+
+def _split_row(raw: str, line: int, errors: Collector) -> tuple[list[str], list[int]] | None:
+    """The fields of one CSV line and the 1-based column where each starts; None (and a
+    problem at the line) when the line is not well-formed CSV: a quote opens a quoted field only
+    as its first character, the field ends at the closing quote (a quote inside is written
+    ``""``), and a field holds at most ``csv.field_size_limit()`` characters."""
+    try:
+        cells = next(csv.reader([raw], strict=True))
+    except csv.Error as exc:
+        text_ = str(exc)
+        if "field limit" in text_:
+            message = (f"a field longer than {csv.field_size_limit():,} characters (a hits row "
+                       "is a few dozen)")
+        elif "end of data" in text_:
+            message = ("a quoted field is not closed on this line: a '\"' that starts a field "
+                       "must end it, and a '\"' inside it is written '\"\"'")
+        elif "expected after" in text_:
+            message = ("text after a quoted field's closing '\"': quote the whole field, "
+                       "writing a '\"' inside it as '\"\"'")
+        else:
+            message = f"not a well-formed CSV row ({text_})"
+        errors.add(line, "", message)
+        return None
+    return cells, _cell_columns(raw)
+
+
 def _cell_columns(raw: str) -> list[int]:
-    """1-based character column where each comma-separated field of a raw line starts."""
-    starts, col, quoted = [1], 1, False
-    for ch in raw:
-        col += 1
-        if ch == '"':
-            quoted = not quoted
-        elif ch == "," and not quoted:
-            starts.append(col)
+    """1-based column where each field of a well-formed CSV line starts: a quote opens a quoted
+    field only as a field's first character, and ``""`` inside one is a quote, as for
+    :mod:`csv`."""
+    starts, quoted, first, closed = [1], False, True, False
+    for col, ch in enumerate(raw, start=1):
+        if quoted:
+            quoted, closed = ch != '"', ch == '"'
+            continue
+        if ch == '"' and (first or closed):  # opens the field, or "" inside it
+            quoted = True
+        elif ch == ",":
+            starts.append(col + 1)
+        first, closed = ch == ",", False
     return starts
 
 
@@ -207,19 +249,18 @@ def load_hits(path: str | Path, location_from: str = "tip",
     """Read a hits CSV; raise :class:`InputError` with every problem (line, column, field)."""
     from batcert.specs.common import sha256_of
     path = Path(path)
-    try:
-        raw = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError([Problem(str(path), None, "", f"cannot read the hits: {exc}")]) from None
+    raw = read_hits_bytes(path)
     errors = Collector(path)
-    lines = raw.splitlines()
+    lines = decode_text(raw, str(path)).splitlines()
     rows = [(n + 1, line) for n, line in enumerate(lines) if line.strip()
             and not line.lstrip().startswith("#")]
     if not rows:
         raise InputError([Problem(str(path), None, "", "no header row and no hits")])
     head_line, head_raw = rows[0]
-    header = next(csv.reader([head_raw]))
-    head_cols = _cell_columns(head_raw)
+    split = _split_row(head_raw, head_line, errors)
+    errors.raise_if_any()
+    assert split is not None
+    header, head_cols = split
     columns: dict[str, tuple[int, float | None]] = {}  # name -> (index, SI factor)
     named: set[str] = set()  # known columns in the header, also those with a problem
     for j, cell in enumerate(header):
@@ -272,8 +313,10 @@ def load_hits(path: str | Path, location_from: str = "tip",
     out: dict[str, list] = {k: [] for k in ("hit", "ball", "vi", "vr", "r", "w2", "valid",
                                            "note", "line")}
     for line_no, row_raw in rows[1:]:
-        cells = next(csv.reader([row_raw]))
-        starts = _cell_columns(row_raw)
+        split = _split_row(row_raw, line_no, errors)
+        if split is None:
+            continue
+        cells, starts = split
         if len(cells) != len(header):
             errors.add(line_no, "", f"{len(cells)} fields, the header has {len(header)}")
             continue
@@ -308,15 +351,34 @@ def load_hits(path: str | Path, location_from: str = "tip",
                 errors.add(line_no, name, "must be above zero", column=starts[columns[name][0]])
             return value
 
+        def speed_range(name: str, v: float, low: float, line_no=line_no,
+                        starts=starts) -> float:
+            """``v`` [m/s] if within [low, the largest plausible speed]; otherwise a problem
+            at the column ``name`` it came from (a speed, or a gate time) and NaN."""
+            high = INBOUND_SPEED_RANGE[1]
+            if np.isnan(v) or low <= v <= high:
+                return v
+            which, span = name.split("_")[0], f"{low:g}-{high:g} m/s"
+            message = (f"gives {which} speed {v:.4g} m/s over the {gate_spacing:g} m gate "
+                       f"spacing, outside {span} (check the time and its unit)"
+                       if name.endswith("gate_time") else f"{v:.4g} m/s is outside {span}, "
+                       f"the {which} speeds of a ball-cannon test (a unit or a typo?)")
+            errors.add(line_no, name, message, column=starts[columns[name][0]])
+            return float("nan")
+
         if speeds:
             vi = positive("inbound_speed", number("inbound_speed"))
+            vi = speed_range("inbound_speed", vi, INBOUND_SPEED_RANGE[0]) if vi > 0 else vi
             vr = number("rebound_speed")
         else:
             ti = positive("inbound_gate_time", number("inbound_gate_time"))
             tr = positive("rebound_gate_time", number("rebound_gate_time"))
             assert gate_spacing is not None
-            vi = gate_spacing / ti if ti > 0 else float("nan")  # a time <= 0 is reported above
-            vr = gate_spacing / tr if tr > 0 else float("nan")
+            # a time <= 0 is reported above; a tiny one gives a speed reported here
+            vi = speed_range("inbound_gate_time", gate_spacing / ti, INBOUND_SPEED_RANGE[0]) \
+                if ti > 0 else float("nan")
+            vr = speed_range("rebound_gate_time", gate_spacing / tr, 0.0) \
+                if tr > 0 else float("nan")
         if np.isfinite(vr) and vr < 0:
             errors.add(line_no, "rebound_speed", "is a magnitude: must not be negative",
                        column=starts[columns["rebound_speed"][0]] if speeds else None)
@@ -336,6 +398,6 @@ def load_hits(path: str | Path, location_from: str = "tip",
     if not out["line"]:
         errors.add(head_line, "", "the file has a header but no hits")
     errors.raise_if_any()
-    return Hits(str(path), sha256_of(path), np.asarray(out["hit"]), out["ball"],
+    return Hits(str(path), sha256_of(raw), np.asarray(out["hit"]), out["ball"],
                 np.asarray(out["vi"]), np.asarray(out["vr"]), np.asarray(out["r"]),
                 np.asarray(out["w2"]), np.asarray(out["valid"], bool), out["note"], out["line"])

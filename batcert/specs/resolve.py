@@ -111,9 +111,9 @@ def resolve(kind: str, value: str, relative_to: Path | None = None) -> Path:
     candidate = Path(value)
     if relative_to is not None and not candidate.is_absolute():
         rel = relative_to.parent / candidate
-        if rel.is_file():
+        if _names_a_file(rel):
             return rel
-    if candidate.is_file():
+    if _names_a_file(candidate):
         return candidate
     names = shipped_names(kind)
     if value in names:
@@ -126,6 +126,12 @@ def resolve(kind: str, value: str, relative_to: Path | None = None) -> Path:
     close = suggest(value, list(names))
     hint = f"; did you mean '{close}'?" if close else ""
     raise NotFound(f"unknown {kind} {value!r} (shipped: {', '.join(names) or 'none'}){hint}")
+
+
+def _names_a_file(path: Path) -> bool:
+    """A regular file, or something else that is there and is not a folder (a FIFO, a
+    device), which the loader then refuses by name rather than as "not found"."""
+    return path.is_file() or (path.exists() and not path.is_dir())
 
 
 def suggest(value: str, names: list[str]) -> str | None:

@@ -6,6 +6,8 @@ Mappings load as :class:`Located` dicts and sequences as :class:`LocatedList`; b
 
 from __future__ import annotations
 
+import os
+import stat
 from pathlib import Path
 from typing import Any
 
@@ -117,21 +119,47 @@ def _build_collection(node: yaml.Node, file: str, constructor: yaml.SafeLoader, 
 def load_yaml(path: str | Path) -> Located:
     """Read a YAML file whose top level is a mapping; raise :class:`InputError` on any problem."""
     file = str(path)
-    p = Path(path)
-    try:
-        if p.is_dir():
-            raise InputError([Problem(file, None, "", "is a directory; give a YAML file")])
-        with p.open("rb") as handle:
-            raw = handle.read(MAX_BYTES + 1)
-    except FileNotFoundError:
-        raise InputError([Problem(file, None, "", "file not found")]) from None
-    except OSError as exc:
-        raise InputError([Problem(file, None, "", f"cannot read file: {exc.strerror or exc}")]
-                         ) from None
-    if len(raw) > MAX_BYTES:
-        raise InputError([Problem(file, None, "", f"larger than {MAX_BYTES / 1e6:g} MB; a spec "
-                                  "file is a few kilobytes (is this the right file?)")])
+    raw = read_input(path, MAX_BYTES, "a YAML file",
+                     "a spec file is a few kilobytes (is this the right file?)")
     return load_yaml_text(decode_text(raw, file), file)
+
+
+def read_input(path: str | Path, max_bytes: int, what: str, typical: str) -> bytes:
+    """The bytes of the input file ``path`` (``what`` it should be, e.g. "a YAML file"),
+    refused with one :class:`Problem` when it is missing, unreadable, not a regular file (a
+    FIFO, a device, a socket: checked before opening, and the file is opened without waiting
+    for a writer, so nothing blocks) or larger than ``max_bytes`` (at most ``max_bytes + 1``
+    bytes are read, so a file that never ends cannot fill the memory); ``typical`` says how
+    large such a file usually is. The one place input files are read."""
+    file = str(path)
+
+    def refuse(message: str) -> InputError:
+        return InputError([Problem(file, None, "", message)])
+
+    def too_large() -> InputError:
+        return refuse(f"larger than {max_bytes / 1e6:g} MB; {typical}")
+
+    try:
+        info = os.stat(path)
+        if stat.S_ISDIR(info.st_mode):
+            raise refuse(f"is a directory; give {what}")
+        if not stat.S_ISREG(info.st_mode):
+            raise refuse(f"is not a regular file (a FIFO, a device or a socket); give {what}")
+        if info.st_size > max_bytes:
+            raise too_large()
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0)
+                     | getattr(os, "O_BINARY", 0))
+        with os.fdopen(fd, "rb") as handle:
+            if not stat.S_ISREG(os.fstat(handle.fileno()).st_mode):  # swapped since the stat
+                raise refuse(f"is not a regular file; give {what}")
+            raw = handle.read(max_bytes + 1)
+    except FileNotFoundError:
+        raise refuse("file not found") from None
+    except OSError as exc:
+        raise refuse(f"cannot read file: {exc.strerror or exc}") from None
+    if len(raw) > max_bytes:  # grew since the stat
+        raise too_large()
+    return raw
 
 
 def decode_text(raw: bytes, file: str) -> str:

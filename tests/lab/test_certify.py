@@ -177,3 +177,66 @@ def test_a_bare_hits_csv_with_bat():
     with pytest.raises(UsageProblem, match="a session YAML names its bat"):
         run_reduce(str(LAB / "synthetic-exact.yaml"), "ncaa-bbcor", engine="rigid",
                    bat="ash-34")
+
+
+def test_tiny_gate_times_exit_3_with_nothing_written(tmp_path, batcert_cli):
+    """A gate time of 1e-300 s made an inbound speed of 5e299 m/s, a NaN BPF and a traceback
+    from the JSON writer; it is refused at its cell and nothing is written."""
+    rows = "".join(f"{n},B1,1e-300,0.04,6\n" for n in range(1, 7))
+    (tmp_path / "hits.csv").write_text("hit,ball,inbound_gate_time [s],rebound_gate_time [s],"
+                                       f"impact_location [in from tip]\n{rows}", encoding="utf-8")
+    session = (LAB / "synthetic-exact.yaml").read_text(encoding="utf-8").replace(
+        "hits: synthetic-exact.csv", "hits: hits.csv") + "gate_spacing: 0.5 m\n"
+    (tmp_path / "session.yaml").write_text(session, encoding="utf-8")
+    out = tmp_path / "reports"
+    res = batcert_cli("reduce", tmp_path / "session.yaml", "-p", "ncaa-bbcor", "--engine",
+                      "rigid", "--out", out)
+    assert res.exit_code == 3
+    lines = res.stderr.splitlines()
+    assert lines[0] == "invalid input"
+    assert lines[1].startswith(f"{tmp_path / 'hits.csv'}:2: inbound_gate_time: gives inbound "
+                               "speed 5e+299 m/s")
+    assert not out.exists() or not any(out.iterdir())
+
+
+def test_a_hit_that_reduces_to_a_non_finite_value_is_a_problem_at_its_line(monkeypatch):
+    """The CSV's ranges keep every reduced value finite; should a ball's COR law still fail at
+    a hit's speed, the hit is an input problem at its line, not a NaN in a report."""
+    from dataclasses import replace
+
+    from batcert.errors import InputError
+    from batcert.lab import session as lab_session
+    real = lab_session.reduce_hits
+
+    def failing(*args):
+        red = real(*args)
+        cor = red.ball_cor.copy()
+        cor[2] = np.nan
+        return replace(red, ball_cor=cor, bpf=red.bbcor / cor)
+    monkeypatch.setattr(lab_session, "reduce_hits", failing)
+    s = load_lab_session(LAB / "synthetic-exact.yaml")
+    with pytest.raises(InputError) as exc:
+        lab_session.reduce_session(s)
+    (problem,) = exc.value.problems
+    assert problem.file == s.hits.path and problem.line == s.hits.line[2]
+    assert "reduces to a non-finite ball_cor, bpf (inbound speed" in problem.message
+
+
+def test_monte_carlo_draws_without_a_finite_value_are_left_out_and_said(bbcor, monkeypatch):
+    from dataclasses import replace
+
+    from batcert.lab.certify import MC_DRAWS
+    from batcert.methods import reduction
+    real = reduction.reduce_hits
+
+    def some_infinite(*args, **kwargs):
+        red = real(*args, **kwargs)
+        if red.bbcor.ndim == 2:  # the Monte Carlo's draws, not the hits
+            bbcor = red.bbcor.copy()
+            bbcor[:10, 0] = np.inf
+            return replace(red, bbcor=bbcor)
+        return red
+    monkeypatch.setattr(reduction, "reduce_hits", some_infinite)
+    _, c = certify(load_lab_session(LAB / "synthetic-scatter.yaml"), bbcor, 0.5)
+    assert c.mc_std is not None and math.isfinite(c.mc_std)
+    assert f"10 of {MC_DRAWS:,} Monte Carlo draws reduce to no finite value" in " ".join(c.warnings)

@@ -1256,7 +1256,8 @@ def lab_data() -> None:
     hits("lab-valid", "a valid session of six hits", HITS, expect="valid")
     hits("lab-empty-csv", "an empty hits file", "")
     hits("lab-header-only", "a header and no hits", HITS_HEAD)
-    hits("lab-bom", "a UTF-8 byte-order mark before the header", "\ufeff" + HITS)
+    hits("lab-bom", "a UTF-8 byte-order mark before the header (as spreadsheets write)",
+         "\ufeff" + HITS, expect="valid")
     hits("lab-latin1", "a file that is not UTF-8", (HITS + "7,B\xe9,60.8,13,6,yes,\n")
          .encode("latin-1"))
     hits("lab-nan", "NaN and infinite speeds", HITS_HEAD + "1,B1,nan,13,6,yes,\n2,B1,60.8,inf,6,"

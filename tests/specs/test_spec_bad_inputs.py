@@ -51,6 +51,7 @@ CASES: dict[str, list[Expect]] = {
         Expect(4, "length", "a unit is required (e.g. '34 in'), got the bare number 34"),
     ],
     "bat-wrong-dimension.yaml": [Expect(4, "length", "'34 kg' is not a length")],
+    "bat-dimensionless-length.yaml": [Expect(4, "length", "'34 dimensionless' is not a length")],
     "bat-unknown-unit.yaml": [
         Expect(4, "length", "cannot read '34 inchez': unknown unit 'inchez'"),
     ],

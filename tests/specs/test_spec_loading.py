@@ -178,3 +178,18 @@ def test_profile_beyond_the_tip_is_refused(tmp_path, fixtures_dir):
     assert problem.field == "profile" and "between the knob (0) and the tip (34.00 in)" in (
         problem.message)
     assert Path(problem.file) == path and problem.line == 5  # the `profile:` key
+
+
+def test_a_cor_written_dimensionless_is_a_problem_at_its_line(tmp_path, repo_root):
+    """Dimensionless values (COR, limits) are plain numbers; "0.65 dimensionless" is refused
+    at its line like any other text (issue 24)."""
+    from batcert.specs.ball import load_ball
+    text = (repo_root / "protocols" / "balls" / "collegiate-baseball.yaml").read_text(
+        encoding="utf-8").replace("- [1 m/s, 0.65 +/- 0.01 (uniform)]", "- [1 m/s, 0.65 dimensionless]")
+    path = tmp_path / "ball.yaml"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(InputError) as exc:
+        load_ball(path)
+    (problem,) = exc.value.problems
+    assert problem.field == "cor[0]" and "COR must be a number" in problem.message
+    assert text.splitlines()[problem.line - 1].strip() == "- [1 m/s, 0.65 dimensionless]"

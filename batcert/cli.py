@@ -844,11 +844,11 @@ def reduce(session, protocol, bat, decision_rule, calibrated_bat, engine, out_di
     target = _report_dir(out_dir, no_reports, as_json)
     _check_figures_dir(figures_dir)
     if calibrated_bat is not None:  # before any work: never an input, never a device
+        _check_calibration_target(calibrated_bat, _session_inputs(session, bat))
         if engine != "flexible":
             from batcert.errors import UsageProblem
             raise UsageProblem(f"--write-calibration needs the flexible engine (the {engine} "
                                "engine has no barrel to calibrate)")
-        _check_calibration_target(calibrated_bat, _session_inputs(session, bat))
     result = run_reduce(session, protocol, decision_rule, engine, bat)
     # the calibrated bat is made before any report is written: if there is none (a solid bat,
     # nothing certified), the usage error leaves nothing behind

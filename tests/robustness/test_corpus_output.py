@@ -84,13 +84,7 @@ def test_fifo_as_an_output(cid, tmp_path, monkeypatch):
     assert fifo.is_fifo()
 
 
-@pytest.mark.parametrize("cid", [
-    pytest.param("hits", marks=pytest.mark.xfail(strict=True, reason=(
-        "a session whose hits: is a FIFO with no writer: reduce blocks reading it (a hang) "
-        "instead of refusing a file that is not a regular file"))),
-    pytest.param("bat", marks=pytest.mark.xfail(strict=True, reason=(
-        "a bat path that is a FIFO with no writer: validate blocks reading it (a hang)"))),
-])
+@pytest.mark.parametrize("cid", ["hits", "bat"])
 def test_fifo_as_an_input(cid, tmp_path, monkeypatch):
     """A FIFO where an input is read, with no writer: refused as not a regular file (exit 2
     or 3), not read forever."""

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
 from pathlib import Path
@@ -18,7 +19,8 @@ from batcert import __version__, console  # noqa: E402
 from batcert.errors import InputError  # noqa: E402
 
 ENVIRONMENT_EXIT_CODES = """  4  the reports cannot be written (permissions, full disk, a path that is a file)
-  130  interrupted (Ctrl-C); no partial or temporary file is left"""
+  130  interrupted (Ctrl-C); no partial or temporary file is left
+  143  terminated (SIGTERM): stopped and cleaned up as on Ctrl-C"""
 
 EXIT_CODES = """\b
 Exit codes:
@@ -55,7 +57,8 @@ def _guard(func):
         from batcert.specs.resolve import NotFound
         _use_cache()
         try:
-            return func(*args, **kwargs)
+            with _sigterm_as_interrupt():
+                return func(*args, **kwargs)
         except InputError as exc:
             console.input_error(exc.render())
             sys.exit(3)
@@ -64,11 +67,39 @@ def _guard(func):
         except OutputError as exc:
             console.error(str(exc))
             sys.exit(4)
+        except _Terminated:
+            console.error("terminated")
+            sys.exit(143)
         except KeyboardInterrupt:
             console.error("interrupted")
             sys.exit(130)
 
     return wrapper
+
+
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM, raised where the command is, so that it stops and cleans up as on Ctrl-C (worker
+    processes ended, no partial file, a sweep's journal kept)."""
+
+
+@contextlib.contextmanager
+def _sigterm_as_interrupt():
+    """SIGTERM raises :class:`_Terminated` in the command while it runs (where signals can be
+    handled: the main thread)."""
+    import signal
+    import threading
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def terminated(signum, frame):
+        raise _Terminated
+
+    previous = signal.signal(signal.SIGTERM, terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, signal.SIG_DFL if previous is None else previous)
 
 
 def _use_cache() -> None:
@@ -621,7 +652,8 @@ Exit codes:
   3  invalid input (a spec file has errors; nothing is written)
   4  the reports (or the sweep's journal) cannot be written
   130  interrupted (Ctrl-C); no report is half-written, and the journal beside the
-     reports keeps the finished variants for --resume"""
+     reports keeps the finished variants for --resume
+  143  terminated (SIGTERM): stopped as on Ctrl-C, worker processes included"""
 
 DESIGN_EXIT_CODES = """\b
 Exit codes:

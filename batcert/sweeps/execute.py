@@ -140,13 +140,55 @@ def _on_processes(chunks: list[Chunk], on_done, workers: int) -> None:
     import multiprocessing
     # spawn: the parent may run a progress display's thread, which fork would copy mid-state
     pool = ProcessPoolExecutor(max_workers=min(workers, len(chunks)),
-                               mp_context=multiprocessing.get_context("spawn"))
+                               mp_context=multiprocessing.get_context("spawn"),
+                               initializer=_follow_parent, initargs=(os.getpid(),))
     try:
         futures: dict[Future, Chunk] = {pool.submit(evaluate_chunk, c): c for c in chunks}
         for fut in as_completed(futures):
             on_done(futures[fut], fut.result())
+    except BaseException:
+        _stop_workers(pool)  # interrupted (Ctrl-C, SIGTERM) or failed: no chunk is waited for
+        raise
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _stop_workers(pool: ProcessPoolExecutor) -> None:
+    """End the pool's worker processes now (``ProcessPoolExecutor.terminate_workers`` from
+    Python 3.14; before it, the processes the pool keeps)."""
+    terminate = getattr(pool, "terminate_workers", None)
+    if terminate is not None:
+        terminate()
+        return
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        process.terminate()
+
+
+PARENT_CHECK = 0.2  # [s] how often a worker checks that the sweep's process is alive
+
+
+def _follow_parent(parent: int) -> None:
+    """A worker's initializer: the worker ends when the sweep's process ``parent`` does, however
+    it ends (``kill -9`` included), instead of computing on as an orphan that keeps the
+    resource tracker alive too. On Linux the kernel kills the worker (``PR_SET_PDEATHSIG``);
+    everywhere a daemon thread sees the worker re-parented within :data:`PARENT_CHECK`."""
+    import sys
+    import threading
+    import time
+    if sys.platform == "linux":
+        import ctypes
+        import signal
+        try:
+            ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # 1: PR_SET_PDEATHSIG
+        except (OSError, AttributeError):
+            pass  # the thread below still watches
+
+    def watch() -> None:
+        while os.getppid() == parent:  # also false when the parent died before this ran
+            time.sleep(PARENT_CHECK)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="batcert-parent-watch", daemon=True).start()
 
 
 _ADDRESS = re.compile(r"^(?:(?:tcp|tls|ucx|ws|wss|inproc)://)?[\w.\-\[\]:]+/?$")

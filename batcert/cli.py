@@ -18,9 +18,10 @@ import click  # noqa: E402
 from batcert import __version__, console  # noqa: E402
 from batcert.errors import InputError  # noqa: E402
 
-ENVIRONMENT_EXIT_CODES = """  4  the reports cannot be written (permissions, full disk, a path that is a file)
-  130  interrupted (Ctrl-C); no partial or temporary file is left
+OUTPUT_EXIT_CODE = """  4  the reports cannot be written (permissions, full disk, a path that is a file)"""
+STOPPED_EXIT_CODES = """  130  interrupted (Ctrl-C); no partial or temporary file is left
   143  terminated (SIGTERM): stopped and cleaned up as on Ctrl-C"""
+ENVIRONMENT_EXIT_CODES = OUTPUT_EXIT_CODE + "\n" + STOPPED_EXIT_CODES
 
 EXIT_CODES = """\b
 Exit codes:
@@ -52,7 +53,7 @@ def _guard(func):
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         from batcert.engines import EngineUnavailable
-        from batcert.errors import UsageProblem
+        from batcert.errors import SchedulerUnavailable, UsageProblem
         from batcert.reports.write import OutputError
         from batcert.specs.resolve import NotFound
         _use_cache()
@@ -67,6 +68,9 @@ def _guard(func):
         except OutputError as exc:
             console.error(str(exc))
             sys.exit(4)
+        except SchedulerUnavailable as exc:
+            console.error(str(exc))
+            sys.exit(5)
         except _Terminated:
             console.error("terminated")
             sys.exit(143)
@@ -648,9 +652,11 @@ SWEEP_EXIT_CODES = """\b
 Exit codes:
   0  every variant was evaluated (whatever their verdicts; see the reports)
   2  usage error (unknown parameter or option, a value the parameter cannot take, a
-     scheduler that cannot be reached)
+     malformed scheduler address)
   3  invalid input (a spec file has errors; nothing is written)
   4  the reports (or the sweep's journal) cannot be written
+  5  the dask scheduler cannot be used (dask not installed; unreachable, not
+     dask, silent or without workers)
   130  interrupted (Ctrl-C); no report is half-written, and the journal beside the
      reports keeps the finished variants for --resume
   143  terminated (SIGTERM): stopped as on Ctrl-C, worker processes included"""
@@ -661,7 +667,9 @@ Exit codes:
   1  no value in the range meets the limit
   2  usage error (unknown parameter, a protocol without a limit, a bad range)
   3  invalid input (a spec file has errors; nothing is written)
-""" + ENVIRONMENT_EXIT_CODES
+""" + OUTPUT_EXIT_CODE + """
+  5  the dask scheduler (--scheduler) cannot be used
+""" + STOPPED_EXIT_CODES
 
 
 def _scale_options(func):

@@ -41,9 +41,11 @@ def check_sweep_json(data: dict, n: int) -> None:
 @pytest.mark.parametrize("command, needles", [
     ("sweep", ("0 every variant was evaluated", "2 usage error", "3 invalid input",
                "4 the reports (or the sweep's journal) cannot be written",
-               "130 interrupted (Ctrl-C)", "keeps the finished variants for --resume")),
+               "5 the dask scheduler cannot be used", "130 interrupted (Ctrl-C)",
+               "keeps the finished variants for --resume", "143 terminated (SIGTERM)")),
     ("design", ("0 the limit is met somewhere in the range",
-                "1 no value in the range meets the limit", "2 usage error", "3 invalid input")),
+                "1 no value in the range meets the limit", "2 usage error", "3 invalid input",
+                "5 the dask scheduler (--scheduler) cannot be used", "143 terminated")),
 ])
 def test_help_lists_exit_codes(batcert_cli, command, needles):
     result = batcert_cli(command, "--help")
@@ -101,6 +103,29 @@ def test_usage_errors_exit_2(batcert_cli, tmp_path, vary, message):
     assert result.exit_code == 2
     assert message in " ".join(result.stderr.split())
     assert not (tmp_path / "r").exists()  # nothing written before the work
+
+
+@pytest.mark.parametrize("command", [
+    [*SWEEP, "--no-reports"],
+    ["design", "ash-34", "-p", "ncaa-bbcor", "--solve", "pitch_speed", "--engine", "rigid",
+     "--no-reports"],
+])
+def test_a_scheduler_that_cannot_be_used_is_one_line_exit_5(batcert_cli, command):
+    # issue 24: a traceback from inside distributed (tls:// without TLS settings)
+    distributed = pytest.importorskip("distributed")
+    if distributed.security.Security().get_connection_args("client")["ssl_context"] is not None:
+        pytest.skip("dask's configuration here sets up TLS")
+    result = batcert_cli(*command, "--scheduler", "tls://127.0.0.1:9")
+    assert result.exit_code == 5
+    assert result.stderr.splitlines() == [
+        "error: cannot reach the dask scheduler at tls://127.0.0.1:9: tls:// needs TLS "
+        "settings in dask's configuration (distributed.comm.tls)"]
+
+
+def test_a_malformed_scheduler_address_is_a_usage_error(batcert_cli):
+    result = batcert_cli(*SWEEP, "--no-reports", "--scheduler", "tcp://a b")
+    assert result.exit_code == 2
+    assert "--scheduler 'tcp://a b' is not a scheduler address" in result.stderr
 
 
 def test_resume_needs_the_report_directory(batcert_cli):

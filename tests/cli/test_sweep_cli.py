@@ -96,6 +96,8 @@ def test_grid_json(batcert_cli):
     ("wall=2mm:3mm:3", "wall needs a hollow bat"),  # ash-34 is solid
     ("pitch_speed=40m/s:60:3", "a unit is required"),  # the stop lacks the unit
     ("pitch_speed=40m/s:60m/s:1", "N >= 2"),
+    # issue 24: more digits than Python reads into an int gave a ValueError's traceback
+    ("pitch_speed=40m/s:60m/s:" + "9" * 5000, "at most 100000 values per parameter"),
 ])
 def test_usage_errors_exit_2(batcert_cli, tmp_path, vary, message):
     result = batcert_cli("sweep", "ash-34", "-p", "ncaa-bbcor", "--vary", vary, "--engine",
@@ -126,6 +128,22 @@ def test_a_malformed_scheduler_address_is_a_usage_error(batcert_cli):
     result = batcert_cli(*SWEEP, "--no-reports", "--scheduler", "tcp://a b")
     assert result.exit_code == 2
     assert "--scheduler 'tcp://a b' is not a scheduler address" in result.stderr
+
+
+def test_a_grid_of_too_many_variants_is_refused_before_any_work(batcert_cli, monkeypatch):
+    # issue 24: each parameter was capped at 100000 values but not their product, so a grid of
+    # 1e5 x 1e5 made 1e10 points (and ran out of memory) before anything was said
+    from batcert.sweeps import sweep
+    made = []
+    monkeypatch.setattr(sweep, "variant_case", lambda *a: made.append(a))
+    result = batcert_cli("sweep", "ash-34", "-p", "ncaa-bbcor", "--vary",
+                         "pitch_speed=40m/s:60m/s:100000", "--vary",
+                         "bat_angular_speed=0rad/s:20rad/s:100000", "--engine", "rigid",
+                         "--no-reports")
+    assert result.exit_code == 2
+    assert ("--vary: 100000 (pitch_speed) x 100000 (bat_angular_speed) = 10000000000 variants; "
+            "a sweep has at most 100000") in " ".join(result.stderr.split())
+    assert made == []  # not one variant made
 
 
 def test_resume_needs_the_report_directory(batcert_cli):
@@ -187,6 +205,9 @@ def test_design_exit_1_without_a_root(batcert_cli, bbcor_052):
                  id="proposed-default-range"),
     (("-p", "ncaa-bbcor", "--solve", "pich_speed"), "did you mean 'pitch_speed'?"),
     (("-p", "ncaa-bbcor", "--solve", "pitch_speed", "--tolerance", "0 m/s"), "above zero"),
+    # issue 24: a third part bypassed --points (at most 1001) with up to 100000 variants
+    (("-p", "ncaa-bbcor", "--solve", "pitch_speed", "--range", "40m/s:60m/s:100000"),
+     "--range '40m/s:60m/s:100000': give A:B"),
 ])
 def test_design_usage_errors_exit_2(batcert_cli, args, message):
     result = batcert_cli("design", "ash-34", *args, "--engine", "rigid", "--no-reports")

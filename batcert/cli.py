@@ -723,7 +723,7 @@ def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine
     """Run BAT under one protocol for every value of one or two parameters (a grid), and
     report every metric, the sweet spot and the COP against them."""
     from batcert.commands.sweep import finish_journal, journal_for, plan_sweep, run_sweep
-    from batcert.reports.write import variants_stem
+    from batcert.reports.write import check_output_file, variants_stem
     fmts = _formats(formats)
     clock = _Clock()
     plan = plan_sweep(bat, protocol, list(varies), engine)
@@ -738,6 +738,8 @@ def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine
         journal = journal_for(target, variants_stem(plan.base.protocol.id,
                                                     [a.name for a in plan.axes],
                                                     plan.base.bat.path), plan)
+        # a directory or a FIFO in its place: refused now (reading or opening a FIFO waits)
+        check_output_file(journal, [], "the sweep's journal")
         if resume and not journal.exists():
             console.note(f"no journal of this sweep in {target} (same inputs, values, engine "
                          "and batcert version): it runs from the beginning")

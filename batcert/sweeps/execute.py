@@ -48,7 +48,7 @@ class Journal:
         except UnicodeDecodeError:
             raise self._refused(None, "it is not a text file") from None
         except OSError as exc:
-            raise OutputError(self.path, exc.strerror or str(exc)) from None
+            raise OutputError(self.path, exc.strerror or str(exc), JOURNAL) from None
         lines = text.splitlines()
         cut_short = bool(text) and not text.endswith("\n")
         done: dict[int, list[Row]] = {}
@@ -103,7 +103,10 @@ class Journal:
                 f.flush()
                 os.fsync(f.fileno())
         except OSError as exc:
-            raise OutputError(self.path, exc.strerror or str(exc)) from None
+            raise OutputError(self.path, exc.strerror or str(exc), JOURNAL) from None
+
+
+JOURNAL = "the sweep's journal"  # what OutputError says cannot be written
 
 
 def sweep_key(plan: Plan) -> str:

@@ -8,6 +8,7 @@ variant); tests/sweeps/ checks the numbers.
 from __future__ import annotations
 
 import json
+import os
 import shlex
 from pathlib import Path
 
@@ -247,6 +248,62 @@ def test_help_examples_run(batcert_cli, monkeypatch, example):
     monkeypatch.chdir(REPO)
     result = batcert_cli("sweep", *shlex.split(example), "--engine", "rigid", "--no-reports")
     assert result.exit_code == 0, result.stderr
+
+
+def _damage(journal: Path, form: str) -> None:
+    """Put a damaged journal of the form ``form`` at ``journal``."""
+    if form == "directory":
+        journal.mkdir()
+    elif form == "fifo":
+        os.mkfifo(journal)
+    else:
+        journal.write_bytes({
+            "binary garbage": b"\x89PNG\r\n\x1a\n\x00\xff\xfe garbage",
+            "control bytes": b"\x00\x01\x02\n",  # UTF-8, but not JSON
+            "first line cut": b'{"key": "0123',
+            "blank lines": b"\n\n",
+            "a string": b'"a journal"\n',
+            "null": b"null\n",
+            "a number": b"12\n",
+            "empty": b"",
+        }[form])
+
+
+@pytest.mark.parametrize("form, code, message", [
+    ("binary garbage", 2, "it is not a text file; the journal is not used"),
+    ("control bytes", 2, "line 1: the line is damaged"),
+    ("first line cut", 2, "line 1: the line is damaged"),
+    ("blank lines", 2, "line 1: the line is damaged"),
+    ("a string", 2, "line 1: it holds a sweep with other inputs"),
+    ("null", 2, "line 1: it holds a sweep with other inputs"),
+    ("a number", 2, "line 1: it holds a sweep with other inputs"),
+    ("empty", 0, ""),  # nothing recorded yet (killed before the header): runs it all
+    # issue 24: a FIFO hung the sweep for ever, with or without --resume; a directory said
+    # "cannot write reports"
+    ("directory", 4, "cannot write the sweep's journal to"),
+    ("fifo", 4, "cannot write the sweep's journal to"),
+])
+@pytest.mark.parametrize("resume", [True, False])
+def test_a_damaged_journal_is_refused_cleanly(batcert_cli, tmp_path, form, code, message,
+                                              resume):
+    if form == "fifo" and not hasattr(os, "mkfifo"):
+        pytest.skip("no FIFOs here")
+    out = tmp_path / "r"
+    out.mkdir()
+    plan = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:60m/s:6"], "rigid")
+    journal = journal_path(out, STEM, sweep_key(plan))
+    _damage(journal, form)
+    result = batcert_cli(*SWEEP, "--out", out, *(["--resume"] if resume else []))
+    if not resume and code == 2:  # without --resume the journal is not read: written afresh
+        code, message = 0, ""
+    assert result.exit_code == code, result.stderr
+    lines = result.stderr.splitlines()
+    if code:
+        assert len(lines) == 1 if code == 4 else lines[0].startswith("Usage:")  # no traceback
+        assert message in lines[-1]
+        assert str(journal) in lines[-1]
+    else:
+        assert (out / f"{STEM}.json").is_file() and not journal.exists()
 
 
 def test_resume_without_a_journal_of_this_sweep_says_so(batcert_cli, tmp_path):

@@ -21,6 +21,8 @@ from pathlib import Path
 from batcert.errors import OutputError, SchedulerUnavailable, UsageProblem
 from batcert.sweeps.sweep import Chunk, Plan, Row, evaluate_chunk
 
+JOURNAL = "the sweep's journal"  # what OutputError says cannot be written
+
 
 class JournalRefused(UsageProblem):
     """A journal that cannot prove which sweep its rows belong to (another sweep's, or damaged
@@ -104,9 +106,6 @@ class Journal:
                 os.fsync(f.fileno())
         except OSError as exc:
             raise OutputError(self.path, exc.strerror or str(exc), JOURNAL) from None
-
-
-JOURNAL = "the sweep's journal"  # what OutputError says cannot be written
 
 
 def sweep_key(plan: Plan) -> str:
@@ -238,7 +237,7 @@ def _handshake(address: str) -> None:
 
     scheme = address.split("://", 1)[0] if "://" in address else "tcp"
     options = Security().get_connection_args("client")
-    if scheme in ("tls", "wss") and options["ssl_context"] is None:
+    if scheme == "tls" and options["ssl_context"] is None:
         raise SchedulerUnavailable(f"cannot reach the dask scheduler at {address}: {scheme}:// "
                                    "needs TLS settings in dask's configuration "
                                    "(distributed.comm.tls)")
@@ -261,6 +260,7 @@ def _handshake(address: str) -> None:
 
 
 def _unreachable(address: str, exc: BaseException) -> SchedulerUnavailable:
+    """The one line that says why ``address`` cannot be used, from what connecting raised."""
     if isinstance(exc, TimeoutError):
         why = f"no dask scheduler answered within {CONNECT_TIMEOUT:g} s"
     elif isinstance(exc, OSError):

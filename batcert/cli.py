@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
 from pathlib import Path
@@ -17,8 +18,10 @@ import click  # noqa: E402
 from batcert import __version__, console  # noqa: E402
 from batcert.errors import InputError  # noqa: E402
 
-ENVIRONMENT_EXIT_CODES = """  4  the reports cannot be written (permissions, full disk, a path that is a file)
-  130  interrupted (Ctrl-C); no partial or temporary file is left"""
+OUTPUT_EXIT_CODE = """  4  the reports cannot be written (permissions, full disk, a path that is a file)"""
+STOPPED_EXIT_CODES = """  130  interrupted (Ctrl-C); no partial or temporary file is left
+  143  terminated (SIGTERM): stopped and cleaned up as on Ctrl-C"""
+ENVIRONMENT_EXIT_CODES = OUTPUT_EXIT_CODE + "\n" + STOPPED_EXIT_CODES
 
 EXIT_CODES = """\b
 Exit codes:
@@ -50,12 +53,13 @@ def _guard(func):
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         from batcert.engines import EngineUnavailable
-        from batcert.errors import UsageProblem
+        from batcert.errors import SchedulerUnavailable, UsageProblem
         from batcert.reports.write import OutputError
         from batcert.specs.resolve import NotFound
         _use_cache()
         try:
-            return func(*args, **kwargs)
+            with _sigterm_as_interrupt():
+                return func(*args, **kwargs)
         except InputError as exc:
             console.input_error(exc.render())
             sys.exit(3)
@@ -64,11 +68,42 @@ def _guard(func):
         except OutputError as exc:
             console.error(str(exc))
             sys.exit(4)
+        except SchedulerUnavailable as exc:
+            console.error(str(exc))
+            sys.exit(5)
+        except _Terminated:
+            console.error("terminated")
+            sys.exit(143)
         except KeyboardInterrupt:
             console.error("interrupted")
             sys.exit(130)
 
     return wrapper
+
+
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM, raised where the command is, so that it stops and cleans up as on Ctrl-C (worker
+    processes ended, no partial file, a sweep's journal kept)."""
+
+
+@contextlib.contextmanager
+def _sigterm_as_interrupt():
+    """SIGTERM raises :class:`_Terminated` in the command while it runs (where signals can be
+    handled: the main thread)."""
+    import signal
+    import threading
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def terminated(signum, frame):
+        raise _Terminated
+
+    previous = signal.signal(signal.SIGTERM, terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, signal.SIG_DFL if previous is None else previous)
 
 
 def _use_cache() -> None:
@@ -666,11 +701,14 @@ SWEEP_EXIT_CODES = """\b
 Exit codes:
   0  every variant was evaluated (whatever their verdicts; see the reports)
   2  usage error (unknown parameter or option, a value the parameter cannot take, a
-     scheduler that cannot be reached)
+     malformed scheduler address)
   3  invalid input (a spec file has errors; nothing is written)
   4  the reports (or the sweep's journal) cannot be written
+  5  the dask scheduler cannot be used (dask not installed; unreachable, not
+     dask, silent or without workers)
   130  interrupted (Ctrl-C); no report is half-written, and the journal beside the
-     reports keeps the finished variants for --resume"""
+     reports keeps the finished variants for --resume
+  143  terminated (SIGTERM): stopped as on Ctrl-C, worker processes included"""
 
 DESIGN_EXIT_CODES = """\b
 Exit codes:
@@ -678,7 +716,9 @@ Exit codes:
   1  no value in the range meets the limit
   2  usage error (unknown parameter, a protocol without a limit, a bad range)
   3  invalid input (a spec file has errors; nothing is written)
-""" + ENVIRONMENT_EXIT_CODES
+""" + OUTPUT_EXIT_CODE + """
+  5  the dask scheduler (--scheduler) cannot be used
+""" + STOPPED_EXIT_CODES
 
 
 def _scale_options(func):
@@ -732,7 +772,7 @@ def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine
     """Run BAT under one protocol for every value of one or two parameters (a grid), and
     report every metric, the sweet spot and the COP against them."""
     from batcert.commands.sweep import finish_journal, journal_for, plan_sweep, run_sweep
-    from batcert.reports.write import variants_stem
+    from batcert.reports.write import check_output_file, variants_stem
     fmts = _formats(formats)
     clock = _Clock()
     plan = plan_sweep(bat, protocol, list(varies), engine)
@@ -747,6 +787,8 @@ def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine
         journal = journal_for(target, variants_stem(plan.base.protocol.id,
                                                     [a.name for a in plan.axes],
                                                     plan.base.bat.path), plan)
+        # a directory or a FIFO in its place: refused now (reading or opening a FIFO waits)
+        check_output_file(journal, [], "the sweep's journal")
         if resume and not journal.exists():
             console.note(f"no journal of this sweep in {target} (same inputs, values, engine "
                          "and batcert version): it runs from the beginning")

@@ -104,6 +104,12 @@ class UsageProblem(ValueError):
     """The command line asks for something impossible (e.g. fewer than two bats to compare)."""
 
 
+class SchedulerUnavailable(Exception):
+    """``--scheduler`` cannot be used: dask.distributed is not installed, or the scheduler cannot
+    be reached, does not speak dask, has no workers: an environment problem, not bad input
+    (one line, exit 5)."""
+
+
 class OutputError(OSError):
     """Reports (or a sweep's journal) cannot be written where asked (permissions, a full disk,
     a path that is a file or too long): an environment problem, not bad input (exit 4)."""

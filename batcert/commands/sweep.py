@@ -98,6 +98,9 @@ def run_design(bat: str, protocol: str, parameter: str, range_text: str | None =
         tol, _ = read_value(tolerance, param, None)
         if not tol > 0:
             raise ParameterError(f"--tolerance {tolerance!r}: must be above zero")
+    if range_text is not None and range_text.count(":") > 1:  # A:B:N would bypass --points
+        raise ParameterError(f"--range {range_text!r}: give A:B; the margin curve's number of "
+                             "points is --points")
     plan = plan_sweep(bat, protocol, [f"{parameter}={range_text or DEFAULT_RANGE}"], engine,
                       points, need_limit=True)
     if len(plan.axes[0].values) < 2:

@@ -18,12 +18,10 @@ from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 from pathlib import Path
 
-from batcert.errors import OutputError, UsageProblem
+from batcert.errors import OutputError, SchedulerUnavailable, UsageProblem
 from batcert.sweeps.sweep import Chunk, Plan, Row, evaluate_chunk
 
-
-class SchedulerUnavailable(UsageProblem):
-    """``--scheduler`` without dask.distributed installed, or a scheduler that cannot be reached."""
+JOURNAL = "the sweep's journal"  # what OutputError says cannot be written
 
 
 class JournalRefused(UsageProblem):
@@ -52,7 +50,7 @@ class Journal:
         except UnicodeDecodeError:
             raise self._refused(None, "it is not a text file") from None
         except OSError as exc:
-            raise OutputError(self.path, exc.strerror or str(exc)) from None
+            raise OutputError(self.path, exc.strerror or str(exc), JOURNAL) from None
         lines = text.splitlines()
         cut_short = bool(text) and not text.endswith("\n")
         done: dict[int, list[Row]] = {}
@@ -107,7 +105,7 @@ class Journal:
                 f.flush()
                 os.fsync(f.fileno())
         except OSError as exc:
-            raise OutputError(self.path, exc.strerror or str(exc)) from None
+            raise OutputError(self.path, exc.strerror or str(exc), JOURNAL) from None
 
 
 def sweep_key(plan: Plan) -> str:
@@ -140,17 +138,60 @@ def _on_processes(chunks: list[Chunk], on_done, workers: int) -> None:
     import multiprocessing
     # spawn: the parent may run a progress display's thread, which fork would copy mid-state
     pool = ProcessPoolExecutor(max_workers=min(workers, len(chunks)),
-                               mp_context=multiprocessing.get_context("spawn"))
+                               mp_context=multiprocessing.get_context("spawn"),
+                               initializer=_follow_parent, initargs=(os.getpid(),))
     try:
         futures: dict[Future, Chunk] = {pool.submit(evaluate_chunk, c): c for c in chunks}
         for fut in as_completed(futures):
             on_done(futures[fut], fut.result())
+    except BaseException:
+        _stop_workers(pool)  # interrupted (Ctrl-C, SIGTERM) or failed: no chunk is waited for
+        raise
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
 
 
+def _stop_workers(pool: ProcessPoolExecutor) -> None:
+    """End the pool's worker processes now (``ProcessPoolExecutor.terminate_workers`` from
+    Python 3.14; before it, the processes the pool keeps)."""
+    terminate = getattr(pool, "terminate_workers", None)
+    if terminate is not None:
+        terminate()
+        return
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        process.terminate()
+
+
+PARENT_CHECK = 0.2  # [s] how often a worker checks that the sweep's process is alive
+
+
+def _follow_parent(parent: int) -> None:
+    """A worker's initializer: the worker ends when the sweep's process ``parent`` does, however
+    it ends (``kill -9`` included), instead of computing on as an orphan that keeps the
+    resource tracker alive too. On Linux the kernel kills the worker (``PR_SET_PDEATHSIG``);
+    everywhere a daemon thread sees the worker re-parented within :data:`PARENT_CHECK`."""
+    import sys
+    import threading
+    import time
+    if sys.platform == "linux":
+        import ctypes
+        import signal
+        try:
+            ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # 1: PR_SET_PDEATHSIG
+        except (OSError, AttributeError):
+            pass  # the thread below still watches
+
+    def watch() -> None:
+        while os.getppid() == parent:  # also false when the parent died before this ran
+            time.sleep(PARENT_CHECK)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="batcert-parent-watch", daemon=True).start()
+
+
 _ADDRESS = re.compile(r"^(?:(?:tcp|tls|ucx|ws|wss|inproc)://)?[\w.\-\[\]:]+/?$")
-CONNECT_TIMEOUT = "10s"
+CONNECT_TIMEOUT = 10.0  # [s] to connect to the scheduler and exchange dask's handshake
+WORKERS_TIMEOUT = 60.0  # [s] for a scheduler without workers to get one
 
 
 def _on_dask(chunks: list[Chunk], on_done, address: str) -> None:
@@ -161,20 +202,73 @@ def _on_dask(chunks: list[Chunk], on_done, address: str) -> None:
         raise SchedulerUnavailable("--scheduler needs dask.distributed: pip install "
                                    "'batcert[distributed]'") from None
     if not _ADDRESS.match(address):
-        raise SchedulerUnavailable(f"--scheduler {address!r} is not a scheduler address "
-                                   "(e.g. tcp://10.0.0.5:8786)")
+        raise UsageProblem(f"--scheduler {address!r} is not a scheduler address "
+                           "(e.g. tcp://10.0.0.5:8786)")
+    _handshake(address)
     try:
-        client = Client(address, timeout=CONNECT_TIMEOUT)  # the default client while it runs
+        client = Client(address, timeout=f"{CONNECT_TIMEOUT}s")  # the default client meanwhile
     except (OSError, ValueError, TimeoutError) as exc:
-        raise SchedulerUnavailable(f"cannot reach the dask scheduler at {address}: "
-                                   f"{exc}") from None
+        raise _unreachable(address, exc) from None
     try:
+        try:
+            client.wait_for_workers(1, timeout=WORKERS_TIMEOUT)
+        except TimeoutError:
+            raise SchedulerUnavailable(f"the dask scheduler at {address} has no workers (waited "
+                                       f"{WORKERS_TIMEOUT:g} s)") from None
         futures = client.map(evaluate_chunk, chunks, pure=False)
         where = {f.key: c for f, c in zip(futures, chunks, strict=True)}
         for fut in dask_completed(futures):
             on_done(where[fut.key], fut.result())
     finally:
         client.close()
+
+
+def _handshake(address: str) -> None:
+    """Connect to ``address`` and exchange dask's handshake, all within
+    :data:`CONNECT_TIMEOUT` (dask bounds the connecting only, then waits for the handshake for
+    ever, or reads a length from what another server sends and tries to allocate it): an
+    address that cannot be used is refused here, as :class:`SchedulerUnavailable`."""
+    import asyncio
+    import importlib.util
+    from concurrent.futures import ThreadPoolExecutor
+
+    from distributed.comm import connect
+    from distributed.security import Security
+
+    scheme = address.split("://", 1)[0] if "://" in address else "tcp"
+    options = Security().get_connection_args("client")
+    if scheme == "tls" and options["ssl_context"] is None:
+        raise SchedulerUnavailable(f"cannot reach the dask scheduler at {address}: {scheme}:// "
+                                   "needs TLS settings in dask's configuration "
+                                   "(distributed.comm.tls)")
+    if scheme == "ucx" and importlib.util.find_spec("distributed_ucxx") is None:
+        raise SchedulerUnavailable(f"cannot reach the dask scheduler at {address}: ucx:// "
+                                   "needs the distributed-ucxx package")
+
+    async def exchange() -> None:
+        comm = await connect(address, timeout=CONNECT_TIMEOUT, **options)
+        await comm.close()
+
+    async def bounded() -> None:
+        await asyncio.wait_for(exchange(), CONNECT_TIMEOUT)
+
+    try:
+        with ThreadPoolExecutor(1) as thread:  # an event loop of its own, whoever calls
+            thread.submit(lambda: asyncio.run(bounded())).result()
+    except Exception as exc:  # noqa: BLE001 - whatever answers, the address cannot be used
+        raise _unreachable(address, exc) from None
+
+
+def _unreachable(address: str, exc: BaseException) -> SchedulerUnavailable:
+    """The one line that says why ``address`` cannot be used, from what connecting raised."""
+    if isinstance(exc, TimeoutError):
+        why = f"no dask scheduler answered within {CONNECT_TIMEOUT:g} s"
+    elif isinstance(exc, OSError):
+        why = str(exc)
+    else:  # an answer that is not dask's: a web server, another protocol
+        detail = str(exc).splitlines()[0] if str(exc) else ""
+        why = f"it does not speak dask's protocol ({type(exc).__name__}: {detail})"
+    return SchedulerUnavailable(f"cannot reach the dask scheduler at {address}: {why}")
 
 
 def execute(plan: Plan, journal: Journal | None = None, done: dict[int, list[Row]] | None = None,

@@ -12,6 +12,7 @@ Where the chunks run is :mod:`batcert.sweeps.execute`'s business.
 from __future__ import annotations
 
 import itertools
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -33,6 +34,8 @@ from batcert.sweeps.variants import Axis, Case, ParameterError
 from batcert.units import si_unit
 
 CHUNK_SIZE = 4  # variants per chunk: the unit of work of a worker, and of resuming
+MAX_VARIANTS = 100_000  # variants of one sweep, all axes together (a grid multiplies them):
+# about 7 h of the flexible engine on one core, and the grid's points, chunks and rows in memory
 Row = dict[str, Any]
 
 
@@ -77,7 +80,13 @@ class Plan:
 
     def check(self) -> None:
         """Every variant can be made (before any work): a value a parameter cannot take for
-        this bat or protocol raises :class:`ParameterError`."""
+        this bat or protocol raises :class:`ParameterError`, as does a grid of more than
+        :data:`MAX_VARIANTS` variants (refused before a point is made)."""
+        variants = math.prod(len(a.values) for a in self.axes)
+        if variants > MAX_VARIANTS:
+            sizes = " x ".join(f"{len(a.values)} ({a.name})" for a in self.axes)
+            raise ParameterError(f"--vary: {sizes} = {variants} variants; a sweep has at most "
+                                 f"{MAX_VARIANTS}: use fewer values")
         changes = {a.parameter.changes for a in self.axes}
         if {"geometry", "measured"} <= changes:
             raise ParameterError("a geometric or material parameter and a measured property "

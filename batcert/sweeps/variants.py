@@ -354,14 +354,15 @@ def read_range(name: str, spec: str, nominal: float | None, points: int | None =
             first += " " + _NUMBER.sub("", last, count=1).strip()  # 50:70m/s reads as 50m/s:70m/s
         start, pct = read_value(first, parameter, nominal)
         stop, pct2 = read_value(last, parameter, nominal)
-        n = int(m.group(3)) if m.group(3) else (points or 0)
+        count = (m.group(3) or "").lstrip("0") or "0"  # N, read only if short enough to be valid
+        if len(count) > len(str(MAX_POINTS)) or int(count) > MAX_POINTS:
+            raise ParameterError(f"{name}: at most {MAX_POINTS} values per parameter")
+        n = int(count) if m.group(3) else (points or 0)
         if pct != pct2:
             raise ParameterError(f"{name}: give both ends as percentages or both as quantities")
         if n < 1 or (n == 1 and start != stop):
             raise ParameterError(f"{name}={spec}: give the number of values, START:STOP:N with "
                                  "N >= 2")
-        if n > MAX_POINTS:
-            raise ParameterError(f"{name}: at most {MAX_POINTS} values per parameter")
         values = tuple(float(x) for x in np.linspace(start, stop, n))
     lo, hi = parameter.bounds if check_bounds else (-np.inf, np.inf)
     bad = [v for v in values if not (np.isfinite(v) and lo <= v <= hi)]

@@ -8,6 +8,7 @@ variant); tests/sweeps/ checks the numbers.
 from __future__ import annotations
 
 import json
+import os
 import shlex
 from pathlib import Path
 
@@ -43,9 +44,11 @@ def check_sweep_json(data: dict, n: int) -> None:
 @pytest.mark.parametrize("command, needles", [
     ("sweep", ("0 every variant was evaluated", "2 usage error", "3 invalid input",
                "4 the reports (or the sweep's journal) cannot be written",
-               "130 interrupted (Ctrl-C)", "keeps the finished variants for --resume")),
+               "5 the dask scheduler cannot be used", "130 interrupted (Ctrl-C)",
+               "keeps the finished variants for --resume", "143 terminated (SIGTERM)")),
     ("design", ("0 the limit is met somewhere in the range",
-                "1 no value in the range meets the limit", "2 usage error", "3 invalid input")),
+                "1 no value in the range meets the limit", "2 usage error", "3 invalid input",
+                "5 the dask scheduler (--scheduler) cannot be used", "143 terminated")),
 ])
 def test_help_lists_exit_codes(batcert_cli, command, needles):
     result = batcert_cli(command, "--help")
@@ -96,6 +99,8 @@ def test_grid_json(batcert_cli):
     ("wall=2mm:3mm:3", "wall needs a hollow bat"),  # ash-34 is solid
     ("pitch_speed=40m/s:60:3", "a unit is required"),  # the stop lacks the unit
     ("pitch_speed=40m/s:60m/s:1", "N >= 2"),
+    # issue 24: more digits than Python reads into an int gave a ValueError's traceback
+    ("pitch_speed=40m/s:60m/s:" + "9" * 5000, "at most 100000 values per parameter"),
 ])
 def test_usage_errors_exit_2(batcert_cli, tmp_path, vary, message):
     result = batcert_cli("sweep", "ash-34", "-p", "ncaa-bbcor", "--vary", vary, "--engine",
@@ -103,6 +108,45 @@ def test_usage_errors_exit_2(batcert_cli, tmp_path, vary, message):
     assert result.exit_code == 2
     assert message in " ".join(result.stderr.split())
     assert not (tmp_path / "r").exists()  # nothing written before the work
+
+
+@pytest.mark.parametrize("command", [
+    [*SWEEP, "--no-reports"],
+    ["design", "ash-34", "-p", "ncaa-bbcor", "--solve", "pitch_speed", "--engine", "rigid",
+     "--no-reports"],
+])
+def test_a_scheduler_that_cannot_be_used_is_one_line_exit_5(batcert_cli, command):
+    # issue 24: a traceback from inside distributed (tls:// without TLS settings)
+    distributed = pytest.importorskip("distributed")
+    if distributed.security.Security().get_connection_args("client")["ssl_context"] is not None:
+        pytest.skip("dask's configuration here sets up TLS")
+    result = batcert_cli(*command, "--scheduler", "tls://127.0.0.1:9")
+    assert result.exit_code == 5
+    assert result.stderr.splitlines() == [
+        "error: cannot reach the dask scheduler at tls://127.0.0.1:9: tls:// needs TLS "
+        "settings in dask's configuration (distributed.comm.tls)"]
+
+
+def test_a_malformed_scheduler_address_is_a_usage_error(batcert_cli):
+    result = batcert_cli(*SWEEP, "--no-reports", "--scheduler", "tcp://a b")
+    assert result.exit_code == 2
+    assert "--scheduler 'tcp://a b' is not a scheduler address" in result.stderr
+
+
+def test_a_grid_of_too_many_variants_is_refused_before_any_work(batcert_cli, monkeypatch):
+    # issue 24: each parameter was capped at 100000 values but not their product, so a grid of
+    # 1e5 x 1e5 made 1e10 points (and ran out of memory) before anything was said
+    from batcert.sweeps import sweep
+    made = []
+    monkeypatch.setattr(sweep, "variant_case", lambda *a: made.append(a))
+    result = batcert_cli("sweep", "ash-34", "-p", "ncaa-bbcor", "--vary",
+                         "pitch_speed=40m/s:60m/s:100000", "--vary",
+                         "bat_angular_speed=0rad/s:20rad/s:100000", "--engine", "rigid",
+                         "--no-reports")
+    assert result.exit_code == 2
+    assert ("--vary: 100000 (pitch_speed) x 100000 (bat_angular_speed) = 10000000000 variants; "
+            "a sweep has at most 100000") in " ".join(result.stderr.split())
+    assert made == []  # not one variant made
 
 
 def test_resume_needs_the_report_directory(batcert_cli):
@@ -165,6 +209,9 @@ def test_design_exit_1_without_a_root(batcert_cli, bbcor_052):
                  id="proposed-default-range"),
     (("-p", "ncaa-bbcor", "--solve", "pich_speed"), "did you mean 'pitch_speed'?"),
     (("-p", "ncaa-bbcor", "--solve", "pitch_speed", "--tolerance", "0 m/s"), "above zero"),
+    # issue 24: a third part bypassed --points (at most 1001) with up to 100000 variants
+    (("-p", "ncaa-bbcor", "--solve", "pitch_speed", "--range", "40m/s:60m/s:100000"),
+     "--range '40m/s:60m/s:100000': give A:B"),
 ])
 def test_design_usage_errors_exit_2(batcert_cli, args, message):
     result = batcert_cli("design", "ash-34", *args, "--engine", "rigid", "--no-reports")
@@ -204,6 +251,62 @@ def test_help_examples_run(batcert_cli, monkeypatch, example):
     monkeypatch.chdir(REPO)
     result = batcert_cli("sweep", *shlex.split(example), "--engine", "rigid", "--no-reports")
     assert result.exit_code == 0, result.stderr
+
+
+def _damage(journal: Path, form: str) -> None:
+    """Put a damaged journal of the form ``form`` at ``journal``."""
+    if form == "directory":
+        journal.mkdir()
+    elif form == "fifo":
+        os.mkfifo(journal)
+    else:
+        journal.write_bytes({
+            "binary garbage": b"\x89PNG\r\n\x1a\n\x00\xff\xfe garbage",
+            "control bytes": b"\x00\x01\x02\n",  # UTF-8, but not JSON
+            "first line cut": b'{"key": "0123',
+            "blank lines": b"\n\n",
+            "a string": b'"a journal"\n',
+            "null": b"null\n",
+            "a number": b"12\n",
+            "empty": b"",
+        }[form])
+
+
+@pytest.mark.parametrize("form, code, message", [
+    ("binary garbage", 2, "it is not a text file; the journal is not used"),
+    ("control bytes", 2, "line 1: the line is damaged"),
+    ("first line cut", 2, "line 1: the line is damaged"),
+    ("blank lines", 2, "line 1: the line is damaged"),
+    ("a string", 2, "line 1: it holds a sweep with other inputs"),
+    ("null", 2, "line 1: it holds a sweep with other inputs"),
+    ("a number", 2, "line 1: it holds a sweep with other inputs"),
+    ("empty", 0, ""),  # nothing recorded yet (killed before the header): runs it all
+    # issue 24: a FIFO hung the sweep for ever, with or without --resume; a directory said
+    # "cannot write reports"
+    ("directory", 4, "cannot write the sweep's journal to"),
+    ("fifo", 4, "cannot write the sweep's journal to"),
+])
+@pytest.mark.parametrize("resume", [True, False])
+def test_a_damaged_journal_is_refused_cleanly(batcert_cli, tmp_path, form, code, message,
+                                              resume):
+    if form == "fifo" and not hasattr(os, "mkfifo"):
+        pytest.skip("no FIFOs here")
+    out = tmp_path / "r"
+    out.mkdir()
+    plan = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:60m/s:6"], "rigid")
+    journal = journal_path(out, STEM, sweep_key(plan))
+    _damage(journal, form)
+    result = batcert_cli(*SWEEP, "--out", out, *(["--resume"] if resume else []))
+    if not resume and code == 2:  # without --resume the journal is not read: written afresh
+        code, message = 0, ""
+    assert result.exit_code == code, result.stderr
+    lines = result.stderr.splitlines()
+    if code:
+        assert len(lines) == 1 if code == 4 else lines[0].startswith("Usage:")  # no traceback
+        assert message in lines[-1]
+        assert str(journal) in lines[-1]
+    else:
+        assert (out / f"{STEM}.json").is_file() and not journal.exists()
 
 
 def test_resume_without_a_journal_of_this_sweep_says_so(batcert_cli, tmp_path):

@@ -142,7 +142,7 @@ def lab() -> None:
     hits("lab9-number-thousands", "a thousands separator (splits the row)", HEAD + rows(5) + "6,B1,1,060.8,13,6,yes,\n")
     hits("lab9-number-1e400", "a speed 1e400 (overflows to inf)", HEAD + rows(5) + "6,B1,1e400,13,6,yes,\n")
     hits("lab9-number-minus-zero", "an inbound speed -0", HEAD + rows(5) + "6,B1,-0,13,6,yes,\n")
-    hits("lab9-number-subnormal", "an inbound speed 5e-324 m/s", HEAD + rows(5) + "6,B1,5e-324,13,6,yes,\n", "either"
+    hits("lab9-number-subnormal", "an inbound speed 5e-324 m/s", HEAD + rows(5) + "6,B1,5e-324,13,6,yes,\n", "either")
     hits("lab9-huge-mph", "a speed of 1e30 mph", HEAD.replace("[m/s]", "[mph]") + rows(5, "{n},B1,136,29,6,yes,") + "6,B1,1e30,29,6,yes,\n")
     hits("lab9-rebound-zero", "a rebound speed of zero on every hit", HEAD + rows(row="{n},B1,60.80,0,6,yes,"), "either")
     hits("lab9-rebound-above-inbound", "rebound faster than inbound (COR above 1)", HEAD + rows(row="{n},B1,60.80,120,6,yes,"), "either")

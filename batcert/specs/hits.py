@@ -80,8 +80,9 @@ SESSION_SCHEMA = Schema("hit session", (
           "impact_location is measured from.", default="tip"),
     Field("gate_spacing", quantity("length", positive=True), "Distance between the light "
           "gates, for hits given as gate times."),
-    Field("location_step", quantity("length", positive=True), "Hits within half a step of a "
-          "location are one location of the scan (the lab's nominal positions).",
+    Field("location_step", quantity("length", minimum=0.1e-3, maximum=0.2), "Hits within half a "
+          "step of a location are one location of the scan (the lab's nominal positions); "
+          "0.1 mm to 0.2 m.",
           default=0.25 * 0.0254),
     Field("hits_required", integer(minimum=1, maximum=1000), "Consecutive valid hits at the "
           "certified location whose mean is certified (NCAA BBCOR: 6).", default=6),
@@ -329,7 +330,7 @@ def load_hits(path: str | Path, location_from: str = "tip",
             if text_ == "" and name == "bat_angular_speed_after":  # not measured on this hit
                 return float("nan")
             try:
-                value = float(text_)
+                value = float(text_.replace("_", "?"))  # "6_0.8" is not 60.8 to a lab
             except ValueError:
                 errors.add(line_no, name, f"expected a number, got {text_!r}", column=starts[j])
                 return float("nan")

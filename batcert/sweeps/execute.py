@@ -56,8 +56,8 @@ class Journal:
         done: dict[int, list[Row]] = {}
         for k, line in enumerate(lines):
             try:
-                entry = json.loads(line)
-            except json.JSONDecodeError:
+                entry = json.loads(line, parse_constant=_no_constant)
+            except ValueError:  # not JSON, or a NaN/Infinity batcert never writes
                 if k == len(lines) - 1 and cut_short and k > 0:
                     continue  # the chunk being written when the sweep was stopped
                 raise self._refused(k + 1, "the line is damaged") from None
@@ -86,26 +86,45 @@ class Journal:
                               "without --resume to start this sweep afresh")
 
     def start(self, done: dict[int, list[Row]]) -> None:
-        """Write the header and the chunks kept (a fresh journal when ``done`` is empty)."""
+        """Write the header and the chunks kept (a fresh journal when ``done`` is empty) as a
+        new file put in place whole: whatever was at the path (a link to another file, an old
+        journal) is replaced, never written through."""
         lines = [json.dumps({"key": self.key, "created": self.created})]
         lines += [self._line(k, rows) for k, rows in sorted(done.items())]
-        self._write("w", "\n".join(lines) + "\n")
+        tmp = self.path.with_name(f".{self.path.name}.{os.getpid()}.tmp")
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self._write_to(tmp, os.O_CREAT | os.O_EXCL | os.O_TRUNC, "\n".join(lines) + "\n")
+            os.replace(tmp, self.path)
+        except OSError as exc:
+            tmp.unlink(missing_ok=True)
+            raise OutputError(self.path, exc.strerror or str(exc), JOURNAL) from None
 
     def add(self, chunk: int, rows: list[Row]) -> None:
-        self._write("a", self._line(chunk, rows) + "\n")
+        try:
+            self._write_to(self.path, os.O_APPEND | os.O_NOFOLLOW, self._line(chunk, rows) + "\n")
+        except OSError as exc:
+            raise OutputError(self.path, exc.strerror or str(exc), JOURNAL) from None
+
+    def discard(self) -> None:
+        """Remove the journal (a sweep that could not start leaves nothing)."""
+        self.path.unlink(missing_ok=True)
 
     def _line(self, chunk: int, rows: list[Row]) -> str:
         return json.dumps({"key": self.key, "chunk": chunk, "rows": rows}, allow_nan=False)
 
-    def _write(self, mode: str, text: str) -> None:
-        try:
-            self.path.parent.mkdir(parents=True, exist_ok=True)
-            with open(self.path, mode, encoding="utf-8") as f:
-                f.write(text)
-                f.flush()
-                os.fsync(f.fileno())
-        except OSError as exc:
-            raise OutputError(self.path, exc.strerror or str(exc), JOURNAL) from None
+    @staticmethod
+    def _write_to(path: Path, flags: int, text: str) -> None:
+        """Write ``text`` and sync it (``flags``: how the file is opened, write-only)."""
+        fd = os.open(path, os.O_WRONLY | flags, 0o644)
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+
+
+def _no_constant(name: str) -> None:
+    raise ValueError(f"{name} in a journal")
 
 
 def sweep_key(plan: Plan) -> str:
@@ -294,5 +313,11 @@ def execute(plan: Plan, journal: Journal | None = None, done: dict[int, list[Row
         if on_progress:
             on_progress(finished[0], total)
 
-    run_chunks([c for c in chunks if c.index not in done], on_done, workers, scheduler)
+    fresh = not done
+    try:
+        run_chunks([c for c in chunks if c.index not in done], on_done, workers, scheduler)
+    except SchedulerUnavailable:
+        if journal is not None and fresh and not done:
+            journal.discard()  # nothing ran: a journal of nothing would be left behind
+        raise
     return [row for k in sorted(done) for row in done[k]]

@@ -13,6 +13,7 @@ made on the nominal bat and do not apply to the variant, so a variant is built w
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Callable
 from dataclasses import dataclass, replace
@@ -320,9 +321,11 @@ def read_value(text: str, parameter: Parameter, nominal: float | None) -> tuple[
     t = text.strip()
     if t.endswith("%"):
         try:
-            pct = float(t[:-1])
+            pct = float(t[:-1].replace("_", "?"))  # no digit-group underscores
         except ValueError:
             raise ParameterError(f"{parameter.name}: {text!r} is not a percentage") from None
+        if not math.isfinite(pct):
+            raise ParameterError(f"{parameter.name}: {text!r} is not a finite percentage")
         if nominal is None or nominal == 0:
             what = "is zero" if nominal == 0 else "is not given by the bat file"
             raise ParameterError(f"{parameter.name}: the nominal value {what}, so a percentage "
@@ -330,9 +333,12 @@ def read_value(text: str, parameter: Parameter, nominal: float | None) -> tuple[
         return nominal * (pct / 100.0), True
     if parameter.dimension is None:
         try:
-            return float(t), False
+            value = float(t.replace("_", "?"))  # no digit-group underscores
         except ValueError:
             raise ParameterError(f"{parameter.name}: {text!r} is not a number") from None
+        if not math.isfinite(value):
+            raise ParameterError(f"{parameter.name}: {text!r} is not a finite number")
+        return value, False
     try:
         return parse_quantity(t, parameter.dimension), False
     except UnitError as exc:

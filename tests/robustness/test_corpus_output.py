@@ -264,11 +264,7 @@ JOURNALS = ["complete", "truncated-last-line", "header-only", "header-cut", "emp
             "not-json-middle", "other-sweep", "other-header-only", "chunk-twice-differently",
             "chunk-negative", "chunk-beyond", "rows-nan", "utf16", "crlf", "huge-line",
             "is-directory"]
-KNOWN_JOURNALS = {
-    "rows-nan": "a journal row holding NaN (json.loads accepts it) is taken on --resume; "
-                "rewriting the journal then raises ValueError 'Out of range float values are "
-                "not JSON compliant' (a traceback)",
-}
+KNOWN_JOURNALS: dict[str, str] = {}  # journal forms not yet handled cleanly (none)
 
 
 @pytest.mark.parametrize("cid", [
@@ -305,9 +301,7 @@ def test_resume_with_a_journal(cid, tmp_path, monkeypatch):
 
 @pytest.mark.parametrize("resume", [
     pytest.param(True, id="resume"),
-    pytest.param(False, id="fresh", marks=pytest.mark.xfail(strict=True, reason=(
-        "a sweep without --resume opens its journal path with open(..., 'w'): a symlink there "
-        "is followed and the file behind it (here a bat file) is overwritten with the journal"))),
+    pytest.param(False, id="fresh"),
 ])
 def test_journal_that_is_a_symlink_to_a_file(resume, tmp_path, monkeypatch):
     """A journal path that is a symlink to another file (here a bat file): the sweep never

@@ -142,8 +142,9 @@ def print_json(data: Any) -> None:
 def print_results(command: str, results: list[Any]) -> None:
     """A command's ``--json`` output: the one envelope of every command (docs/results-json.md)
     around its ``results``."""
+    from batcert import __version__
     from batcert.results.serialise import envelope
-    print_json(envelope(command, results))
+    print_json(envelope(command, results, __version__))
 
 
 def error(message: str) -> None:

@@ -69,11 +69,11 @@ def _convert(tp: Any, value: Any) -> Any:
     return value
 
 
-def envelope(command: str, results: list[Any]) -> dict[str, Any]:
-    """What every command prints with ``--json``: the schema, the command, the version, and
-    its ``results`` (always a list: result documents, or a listing's entries)."""
-    from batcert import __version__
-    return {"schema": SCHEMA, "command": command, "batcert_version": __version__,
+def envelope(command: str, results: list[Any], version: str) -> dict[str, Any]:
+    """What every command prints with ``--json``: the schema, the command, the batcert
+    ``version``, and its ``results`` (always a list: result documents, or a listing's
+    entries)."""
+    return {"schema": SCHEMA, "command": command, "batcert_version": version,
             "results": results}
 
 

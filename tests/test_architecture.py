@@ -40,7 +40,7 @@ ALLOWED = {
                     "specs", "model", "results", "runner", "__init__"},
     "commands": {"units", "errors", "conventions", "physics", "engines", "specs", "model",
                  "results", "runner", "analysis", "sweeps", "lab", "uncertainty", "__init__"},
-    "console": {"units", "reports", "results"},
+    "console": {"units", "reports", "results", "__init__"},
     "cli": {"__init__", "console", "errors", "commands", "engines", "specs", "units", "reports",
             "runner", "cache", "physics"},
     "__main__": {"cli"},

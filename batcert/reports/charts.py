@@ -47,6 +47,7 @@ def line_chart(
     hlines: Sequence[tuple[float, str]] = (),
     width: int = 640,
     height: int = 360,
+    x2: SecondaryAxis | None = None,
 ) -> str:
     """A line chart of several series with axes, ticks, legend and labelled vertical markers.
 
@@ -70,7 +71,8 @@ def line_chart(
     label_rows = marker_rows(vlines, x_lo, x_hi, left, plot_w)
     n_label_rows = 1 + max((r for r, _ in label_rows), default=-1)
     top = title_h + legend_h + 6 + 14 * n_label_rows
-    bottom = 46.0
+    bottom = 46.0 + (40.0 if x2 else 0.0)
+    height += 40 if x2 else 0  # the plot keeps its height; the second x scale adds a row
     plot_h = height - top - bottom
 
     def px(x: float) -> float:
@@ -85,7 +87,8 @@ def line_chart(
     c.legend([(s.name, color(i), dash(i), "line") for i, s in enumerate(series)]
              + ([(point_legend, INK, "", "point")] if point_legend and points else []),
              left, title_h, plot_w)
-    axes(c, left, top, plot_w, plot_h, (x_lo, x_hi), (y_lo, y_hi), x_label, y_label, y2)
+    axes(c, left, top, plot_w, plot_h, (x_lo, x_hi), (y_lo, y_hi), x_label, y_label, y2,
+         x2=x2)
 
     for (row, anchor), m in zip(label_rows, vlines, strict=True):
         if x_lo <= m.x <= x_hi:

@@ -28,6 +28,7 @@ class LineFigure:
     point_legend: str = ""
     y2: SecondaryAxis | None = None
     x_range: tuple[float, float] | None = None
+    x2: SecondaryAxis | None = None  # a second x scale (inches from the tip)
 
 
 @dataclass(frozen=True)
@@ -80,5 +81,5 @@ def svg_of(fig: Figure) -> str:
     return charts.line_chart(named_series(fig.series), title=fig.title, x_label=fig.x_label,
                              y_label=fig.y_label, vlines=fig.vlines, points=fig.points,
                              point_legend=fig.point_legend, y2=fig.y2, hlines=fig.hlines,
-                             x_range=fig.x_range)
+                             x_range=fig.x_range, x2=fig.x2)
 

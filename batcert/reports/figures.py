@@ -55,9 +55,14 @@ def _draw_line(ax, fig: LineFigure) -> None:
         ax.set_xlim(*fig.x_range)
     ax.set_xlabel(fig.x_label)
     if fig.y2 is not None:
-        scale = fig.y2.scale
-        sec = ax.secondary_yaxis("right", functions=(lambda v: v * scale, lambda v: v / scale))
-        sec.set_ylabel(fig.y2.label)
+        y2 = fig.y2
+        sec = ax.secondary_yaxis("right", functions=(y2.shown, y2.value))
+        sec.set_ylabel(y2.label)
+    if fig.x2 is not None:
+        x2 = fig.x2
+        sec = ax.secondary_xaxis("bottom", functions=(x2.shown, x2.value))
+        sec.spines["bottom"].set_position(("outward", 40))
+        sec.set_xlabel(x2.label)
 
 
 def _draw_bars(ax, fig: BarFigure) -> None:
@@ -108,7 +113,8 @@ def render(fig: Figure, fmt: str) -> bytes:
         cols = 2 if max((len(x.name) for x in fig.series), default=0) <= 40 else 1
         least = 1 if isinstance(fig, BarFigure) else 2  # a bar's colour always needs its name
         rows = 0 if n < least else -(-n // cols)  # legend rows below the axes
-        f = MplFigure(figsize=(WIDTH_IN, HEIGHT_IN + 0.18 * rows), layout="constrained")
+        extra = 0.5 if getattr(fig, "x2", None) is not None else 0.0  # a second x scale
+        f = MplFigure(figsize=(WIDTH_IN, HEIGHT_IN + 0.18 * rows + extra), layout="constrained")
         ax = f.add_subplot()
         (_draw_bars if isinstance(fig, BarFigure) else _draw_line)(ax, fig)  # type: ignore[arg-type]
         ax.set_title(textwrap.fill(fig.title, 64), loc="left", fontweight="bold")

@@ -9,7 +9,7 @@ from batcert.reports.figure import Figure, LineFigure, svg_of
 from batcert.reports.format import metric_name
 from batcert.reports.table import Badge
 from batcert.reports.templates import render_template
-from batcert.units import Display, to_us
+from batcert.units import INCH, Display, to_us
 
 if TYPE_CHECKING:
     from markupsafe import Markup
@@ -51,12 +51,15 @@ def run_figures(result: RunResult) -> list[Figure]:
     from batcert.reports.run_view import shows_metric_plot
     points = [svg.Point(c.impact_location, c.exit_speed, i)
               for i, c in enumerate(result.conditions)]
+    mp = result.mass_properties  # a lab reads locations in inches from the tip
+    from_tip = svg.SecondaryAxis("Impact location from the tip [in]", -1.0 / INCH,
+                                 (mp.length - mp.pivot) / INCH)
     figs: list[Figure] = [LineFigure(
         "exit-speed", "Exit speed against impact location", X_LABEL, "Exit speed [m/s]",
         [svg.Series(c.name, c.sweep.impact_location, c.sweep.exit_speed)
          for c in result.conditions],
         vlines=_cop_lines(result), points=points, point_legend="impact point",
-        y2=svg.SecondaryAxis("Exit speed [mph]", to_us(1.0, "speed")))]
+        y2=svg.SecondaryAxis("Exit speed [mph]", to_us(1.0, "speed")), x2=from_tip)]
     if shows_metric_plot(result):
         name = metric_name(result.metric)
         figs.append(LineFigure(
@@ -65,7 +68,11 @@ def run_figures(result: RunResult) -> list[Figure]:
              for c in result.conditions],
             vlines=_cop_lines(result), point_legend="impact point",
             points=[svg.Point(c.impact_location, c.metric_value, i)
-                    for i, c in enumerate(result.conditions)]))
+                    for i, c in enumerate(result.conditions)],
+            hlines=[] if result.limit is None else [
+                (result.limit + result.tolerance, f"limit {result.limit:g}"
+                 + (f" + {result.tolerance:g}" if result.tolerance else ""))],
+            x2=from_tip))
     from batcert.reports.uncertainty_view import uncertainty_figure
     spread = uncertainty_figure(result)
     return figs + ([spread] if spread is not None else [])

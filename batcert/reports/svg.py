@@ -71,10 +71,19 @@ class Point:
 
 @dataclass(frozen=True)
 class SecondaryAxis:
-    """A right-hand y axis showing ``value * scale`` (e.g. m/s on the left, mph on the right)."""
+    """A second scale of an axis, showing ``value * scale + offset``: a right-hand y axis (m/s
+    on the left, mph on the right) or a second row under the x axis (metres from the pivot,
+    inches from the tip: a negative scale)."""
 
     label: str
     scale: float
+    offset: float = 0.0
+
+    def shown(self, value: float) -> float:
+        return value * self.scale + self.offset
+
+    def value(self, shown: float) -> float:
+        return (shown - self.offset) / self.scale
 
 
 def color(i: int) -> str:
@@ -255,8 +264,10 @@ def runs(xs: Sequence[float], ys: Sequence[float], xr: tuple[float, float],
 
 def axes(c: Canvas, left: float, top: float, w: float, h: float, xr: tuple[float, float],
           yr: tuple[float, float], x_label: str, y_label: str,
-          y2: SecondaryAxis | None, x_ticks: bool = True) -> None:
-    """Grid, frame, ticks and axis titles of a plot area."""
+          y2: SecondaryAxis | None, x_ticks: bool = True,
+          x2: SecondaryAxis | None = None) -> None:
+    """Grid, frame, ticks and axis titles of a plot area (``x2``: a second row of tick labels
+    and its title under the x axis's)."""
     yt = nice_ticks(*yr)
     for t, lab in zip(yt, tick_labels(yt), strict=True):
         y = top + h - (t - yr[0]) / (yr[1] - yr[0]) * h
@@ -273,13 +284,20 @@ def axes(c: Canvas, left: float, top: float, w: float, h: float, xr: tuple[float
           f'stroke="{INK}" stroke-width="1"/>')
     if x_label:
         c.text(left + w / 2, top + h + 38, x_label, anchor="middle")
+    if x2:
+        lo, hi = sorted((x2.shown(xr[0]), x2.shown(xr[1])))
+        t2 = nice_ticks(lo, hi, max_ticks=max(3, min(8, int(w // 70))))
+        for t, lab in zip(t2, tick_labels(t2), strict=True):
+            x = left + (x2.value(t) - xr[0]) / (xr[1] - xr[0]) * w
+            c.text(x, top + h + 58, lab, size=11, anchor="middle", fill=MUTED)
+        c.text(left + w / 2, top + h + 78, x2.label, anchor="middle")
     if y_label:
         c.text(16, top + h / 2, y_label, anchor="middle", rotate=-90)
     if y2:
-        lo, hi = sorted((yr[0] * y2.scale, yr[1] * y2.scale))
+        lo, hi = sorted((y2.shown(yr[0]), y2.shown(yr[1])))
         t2 = nice_ticks(lo, hi)
         for t, lab in zip(t2, tick_labels(t2), strict=True):
-            y = top + h - (t / y2.scale - yr[0]) / (yr[1] - yr[0]) * h
+            y = top + h - (y2.value(t) - yr[0]) / (yr[1] - yr[0]) * h
             c.line(left + w, y, left + w + 4, y, stroke=INK)
             c.text(left + w + 7, y + 4, lab, size=11, fill=MUTED)
         c.text(c.width - 10, top + h / 2, y2.label, anchor="middle", rotate=90)

@@ -31,6 +31,8 @@ from batcert.reports.svg import (
     text_width,
 )
 
+MIN_PLOT_HEIGHT = 220.0  # [px] the plot area's least height
+
 
 def line_chart(
     series: Sequence[Series],
@@ -72,7 +74,9 @@ def line_chart(
     n_label_rows = 1 + max((r for r, _ in label_rows), default=-1)
     top = title_h + legend_h + 6 + 14 * n_label_rows
     bottom = 46.0 + (40.0 if x2 else 0.0)
-    height += 40 if x2 else 0  # the plot keeps its height; the second x scale adds a row
+    # the plot keeps a readable height whatever the legend and the second x scale take: the
+    # figure grows instead (nine series of a two-parameter sweep squeezed it to 70 px)
+    height = max(height + (40 if x2 else 0), int(top + MIN_PLOT_HEIGHT + bottom))
     plot_h = height - top - bottom
 
     def px(x: float) -> float:

@@ -16,14 +16,14 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from batcert.reports.figure import BarFigure, Figure, LineFigure, named_series
-from batcert.reports.svg import DASHES, PALETTE
+from batcert.reports.svg import PALETTE, dash
 
 FIGURE_FORMATS = ("svg", "pdf", "png")
 WIDTH_IN, HEIGHT_IN, DPI = 6.3, 3.6, 200  # 16 cm x 9 cm; PNG at 200 dpi
 
 
 def _dash(i: int):
-    pattern = DASHES[i % len(DASHES)]
+    pattern = dash(i)
     return "solid" if not pattern else (0, tuple(float(x) * 0.8 for x in pattern.split()))
 
 

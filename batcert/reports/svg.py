@@ -91,7 +91,9 @@ def color(i: int) -> str:
 
 
 def dash(i: int) -> str:
-    return DASHES[i % len(DASHES)]
+    """The dash pattern of series ``i``: beyond the palette's length the patterns shift by one,
+    so no two of the first 49 series share both colour and dash."""
+    return DASHES[(i + i // len(PALETTE)) % len(DASHES)]
 
 
 def nice_ticks(lo: float, hi: float, max_ticks: int = 6) -> list[float]:

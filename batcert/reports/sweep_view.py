@@ -43,8 +43,22 @@ def axis_value(axis: SweepAxis, value: float) -> Display:
     return Display(f"{value / factor:.4g} {unit}" if unit != "-" else f"{value:.4g}", pct or us)
 
 
-def axis_label(axis: SweepAxis) -> str:
+def words(axis: SweepAxis) -> str:
+    """The parameter in words ("bat angular speed"; its name where a saved 0.2 document has
+    none)."""
+    return axis.label or axis.name.replace("_", " ")
+
+
+def column_label(axis: SweepAxis) -> str:
+    """A table's column: the parameter's name as typed on the command line, with its unit
+    (``bat_angular_speed [rad/s]``)."""
     return f"{axis.name} [{display_unit(axis)[0]}]"
+
+
+def axis_label(axis: SweepAxis) -> str:
+    """A figure's axis title: "Bat angular speed [rad/s]"."""
+    text = words(axis)
+    return f"{text[:1].upper()}{text[1:]} [{display_unit(axis)[0]}]"
 
 
 def _x(axis: SweepAxis, values: list[float]) -> list[float]:
@@ -59,17 +73,20 @@ def _groups(result: SweepResult) -> list[tuple[str, list[int]]]:
     if len(result.axes) == 1:
         return [("", list(range(n)))]
     second = result.axes[1]
-    return [(f"{second.name} {axis_value(second, v).si}",
+    return [(f"{words(second)} {axis_value(second, v).si}",
              [i for i in range(n) if result.points[i][1] == v]) for v in second.values]
 
 
-def _series(result: SweepResult, values: list[float | None], name: str) -> list[Series]:
+def _series(result: SweepResult, values: list[float | None], name: str,
+            alone: str = "") -> list[Series]:
+    """One series per line of a figure, named ``name`` and the line's group; ``alone`` names
+    it where both are empty."""
     first = result.axes[0]
     out = []
     for label, idx in _groups(result):
         xs = _x(first, [result.points[i][0] for i in idx])
         ys = [values[i] for i in idx]
-        out.append(Series(" ".join(x for x in (name, label) if x) or result.metric,
+        out.append(Series(" ".join(x for x in (name, label) if x) or alone or result.metric,
                           xs, [float("nan") if y is None else y for y in ys]))
     return out
 
@@ -98,17 +115,19 @@ def sweep_figures(result: SweepResult) -> list[Figure]:
         nominal = [Point(_x(first, [first.nominal])[0], result.nominal.value, line,
                          "as measured")]
     figs.append(LineFigure(
-        "metric", f"{metric} ({result.aggregate}) against {first.name}", x_label,
+        "metric", f"{metric} ({result.aggregate}) against {words(first)}", x_label,
         f"{metric} [{'m/s' if result.metric == 'exit-speed' else '-'}]", series,
-        caption=f"The protocol's result against {first.name}"
+        caption=f"The protocol's result against {words(first)}"
         + ("; the dashed line is its limit" if limit else "")
         + ("; the circle is the nominal bat with its measurements" if nominal else "") + ".",
         hlines=limit, points=nominal, point_legend="nominal bat as measured" if nominal else "",
         vlines=[] if first.nominal is None else [VLine(_x(first, [first.nominal])[0],
                                                         "nominal")]))
     for key, (word, unit) in METRIC_PLOTS.items():
-        lines = [s for c in result.conditions for s in _series(result, c.series[key], c.name)]
-        figs.append(LineFigure(key.replace("_", "-"), f"{word} against {first.name}", x_label,
+        named = len(result.conditions) > 1  # a condition's name only where there are several
+        lines = [s for c in result.conditions
+                 for s in _series(result, c.series[key], c.name if named else "", word)]
+        figs.append(LineFigure(key.replace("_", "-"), f"{word} against {words(first)}", x_label,
                                f"{word} [{unit}]", lines,
                                caption=f"{word} at the impact point of each condition."))
     spots = []
@@ -118,21 +137,21 @@ def sweep_figures(result: SweepResult) -> list[Figure]:
         if c.rigid_applies:
             spots += _series(result, c.series["rigid_sweet_spot"],
                              f"{c.name}: rigid sweet spot (Eq. 7)")
-    figs.append(LineFigure("sweet-spot", f"Sweet spot and COP against {first.name}", x_label,
+    figs.append(LineFigure("sweet-spot", f"Sweet spot and COP against {words(first)}", x_label,
                            "distance from the pivot [m]", spots,
                            caption="Sweet spot (maximum exit speed), centre of percussion "
                            "(Eq. 4) and, where the speeds are fixed and the bat swings, the "
                            "rigid-bat sweet spot (Smith 2001 Eq. 7)."))
     if any(a.changes != "protocol" for a in result.axes):
-        figs.append(LineFigure("mass", f"Mass against {first.name}", x_label, "mass [kg]",
+        figs.append(LineFigure("mass", f"Mass against {words(first)}", x_label, "mass [kg]",
                                _series(result, result.series["mass"], "mass")))
-        figs.append(LineFigure("moi", f"MOI about the pivot against {first.name}", x_label,
+        figs.append(LineFigure("moi", f"MOI about the pivot against {words(first)}", x_label,
                                "MOI [kg m²]", _series(result, result.series["moi_pivot"], "MOI")))
     if result.design is not None:
         margin = result.series["margin"]
         roots = [VLine(_x(first, [r.value])[0], f"root {axis_value(first, r.value).si}")
                  for r in result.design.roots]
-        figs.append(LineFigure("margin", f"Margin to the limit against {first.name}", x_label,
+        figs.append(LineFigure("margin", f"Margin to the limit against {words(first)}", x_label,
                                f"margin [{'m/s' if result.metric == 'exit-speed' else '-'}]",
                                _series(result, margin, "margin"), hlines=[(0.0, "limit")],
                                vlines=roots, caption="Margin = limit + tolerance - value; "
@@ -151,7 +170,7 @@ def _rows(result: SweepResult) -> list[int]:
 def _summary_table(result: SweepResult) -> Table:
     m = result.metric
     ranged = any(v is not None for v in result.series["value_low"])
-    head = [axis_label(a) for a in result.axes] + [fmt.metric_word(m)]
+    head = [column_label(a) for a in result.axes] + [fmt.metric_word(m)]
     head += ["plausible barrel"] if ranged else []
     head += ["margin", "verdict"] if result.limit is not None else []
     head += ["mass [kg]", "MOI [kg m²]", "hoop [Hz]"]
@@ -179,7 +198,7 @@ def _condition_table(result: SweepResult, k: int) -> Table:
     c = result.conditions[k]
     keys = ["exit_speed", "cor", "bpf", "besr", "bbcor", "collision_efficiency",
             "impact_location", "sweet_spot", "cop", "rigid_sweet_spot"]
-    head = [axis_label(a) for a in result.axes] + [
+    head = [column_label(a) for a in result.axes] + [
         "exit speed [m/s]", "COR", "BPF", "BESR", "BBCOR", "e_A", "impact [m]",
         "sweet spot [m]", "COP [m]", "Eq. 7 [m]"]
     rows = []

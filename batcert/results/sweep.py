@@ -38,6 +38,7 @@ class SweepAxis:
     nominal: float | None  # the nominal bat's or protocol's value [SI] (None: not given)
     values: list[float]  # [SI]
     percent: bool  # given on the command line as percent of nominal
+    label: str = ""  # the parameter in words ("bat angular speed"); "" in 0.2's documents
 
 
 @dataclass

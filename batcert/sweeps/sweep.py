@@ -222,7 +222,7 @@ def collect(plan: Plan, rows: list[Row], nominal: NominalRun | None) -> SweepRes
     axes = [SweepAxis(a.name, a.parameter.dimension,
                       si_unit(a.parameter.dimension) if a.parameter.dimension else "-",
                       a.parameter.changes, a.parameter.doc, a.nominal, list(a.values),
-                      a.percent) for a in plan.axes]
+                      a.percent, a.parameter.label) for a in plan.axes]
     bat = plan.base.bat
     inputs = [{"role": "bat", "name": bat.name, "path": display_path(bat.path),
                "sha256": bat.sha256},

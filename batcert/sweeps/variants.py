@@ -41,6 +41,7 @@ class Parameter:
     """One parameter a sweep can vary."""
 
     name: str
+    label: str  # the name in words, for reports' axes and legends ("bat angular speed")
     dimension: str | None  # a batcert.units dimension, None for a plain number
     changes: str  # geometry | measured | protocol
     doc: str
@@ -231,45 +232,45 @@ def _check_speeds(p: ProtocolSpec, c: ConditionSpec) -> None:
                              "speeds both zero the ball and the bat never meet")
 
 
-def _param(name: str, dimension: str | None, changes: str, doc: str, nominal, apply,
-           bounds: tuple[float, float], tolerance: float) -> Parameter:
-    return Parameter(name, dimension, changes, doc, nominal, apply, bounds, tolerance)
+def _param(name: str, label: str, dimension: str | None, changes: str, doc: str, nominal,
+           apply, bounds: tuple[float, float], tolerance: float) -> Parameter:
+    return Parameter(name, label, dimension, changes, doc, nominal, apply, bounds, tolerance)
 
 
 _mass, _moi, _hoop = _measured("mass"), _measured("moi"), _measured("hoop_frequency")
 
 PARAMETERS: dict[str, Parameter] = {p.name: p for p in (
-    _param("wall", "length", "geometry", "Wall thickness of a hollow bat: the thickest station "
-           "(the barrel) takes the value and every station scales in proportion.",
+    _param("wall", "wall thickness", "length", "geometry", "Wall thickness of a hollow bat: "
+           "the thickest station (the barrel) takes the value and every station scales in proportion.",
            _wall_nominal, _wall_apply, (1e-4, 0.02), 1e-6),
-    _param("youngs_modulus", "modulus", "geometry", "The material's stiffness: Young's modulus "
-           "(the shear modulus scales with it).", lambda c, b: c.bat.material.youngs_modulus,
+    _param("youngs_modulus", "Young's modulus", "modulus", "geometry", "The material's "
+           "stiffness: Young's modulus (the shear modulus scales with it).", lambda c, b: c.bat.material.youngs_modulus,
            _material_apply(youngs_modulus="youngs_modulus", shear_modulus="shear_modulus"),
            (1e8, 1e12), 1e6),
-    _param("density", "density", "geometry", "The material's density.",
+    _param("density", "density", "density", "geometry", "The material's density.",
            lambda c, b: c.bat.material.density, _material_apply(density="density"),
            (100.0, 20000.0), 0.1),
-    _param("barrel_diameter", "length", "geometry", "Barrel diameter: the handle and knob keep "
+    _param("barrel_diameter", "barrel diameter", "length", "geometry", "Barrel diameter: the handle and knob keep "
            "theirs and the taper stretches to the new barrel.", _barrel_nominal, _barrel_apply,
            (0.005, 0.15), 1e-5),
-    _param("mass", "mass", "measured", "The measured mass (the CG and MOI stay as measured).",
+    _param("mass", "mass", "mass", "measured", "The measured mass (the CG and MOI stay as measured).",
            _mass[0], _mass[1], (0.1, 3.0), 1e-4),
-    _param("moi", "moi", "measured", "The measured MOI about the measured pivot (the mass and "
+    _param("moi", "MOI about the pivot", "moi", "measured", "The measured MOI about the measured pivot (the mass and "
            "CG stay as measured).", _moi[0], _moi[1], (1e-4, 10.0), 1e-6),
-    _param("hoop_frequency", "frequency", "measured", "The measured barrel hoop (n = 2) "
+    _param("hoop_frequency", "hoop frequency", "frequency", "measured", "The measured barrel hoop (n = 2) "
            "frequency of a hollow bat; the barrel is calibrated to it.", _hoop[0], _hoop[1],
            (100.0, 20000.0), 0.5),
-    _param("pitch_speed", "speed", "protocol", "Ball speed toward the bat, in every condition "
+    _param("pitch_speed", "pitch speed", "speed", "protocol", "Ball speed toward the bat, in every condition "
            "that pitches the ball (stationary-ball set-ups stay stationary unless no "
            "condition pitches).", _speed_nominal("pitch_speed"), _speed_apply("pitch_speed"),
            (0.0, 300.0), 0.01),
-    _param("bat_angular_speed", "angular_speed", "protocol", "Bat angular speed about the "
+    _param("bat_angular_speed", "bat angular speed", "angular_speed", "protocol", "Bat angular speed about the "
            "pivot, in every condition that swings the bat at explicit speeds (replaces a "
            "linear bat speed; stationary-bat set-ups stay stationary unless no condition "
            "swings).",
            _speed_nominal("bat_angular_speed"), _speed_apply("bat_angular_speed"),
            (0.0, 2000.0), 0.01),
-    _param("relative_speed", "speed", "protocol", "Matched relative normal speed, in every "
+    _param("relative_speed", "relative speed", "speed", "protocol", "Matched relative normal speed, in every "
            "matched condition.", _speed_nominal("relative_speed"),
            _speed_apply("relative_speed"), (0.1, 300.0), 0.01),
 )}

@@ -167,6 +167,24 @@ def evaluate_chunk(chunk: Chunk) -> list[Row]:
 
 # ---- collecting ---------------------------------------------------------------------------
 
+def variant_name(plan: Plan, index: int) -> str:
+    """A variant by its values, as on the command line: ``pitch_speed=55 m/s, wall=0.0027 m``
+    (SI)."""
+    return ", ".join(f"{a.name}={v:.6g}" + (f" {si_unit(a.parameter.dimension)}"
+                                             if a.parameter.dimension else "")
+                     for a, v in zip(plan.axes, plan.points[index], strict=True))
+
+
+def _which(plan: Plan, indices: list[int], shown: int = 4) -> str:
+    """Which variants a warning came from: all of them, or the first few by name."""
+    n = len(plan.points)
+    if len(indices) == n:
+        return f"all {n} variants" if n > 1 else "the variant"
+    names = "; ".join(variant_name(plan, i) for i in indices[:shown])
+    more = f"; and {len(indices) - shown} more" if len(indices) > shown else ""
+    return f"{len(indices)} of {n} variants: {names}{more}"
+
+
 def _notes(plan: Plan) -> list[str]:
     changes = {a.parameter.changes for a in plan.axes}
     bat = plan.base.bat
@@ -213,8 +231,12 @@ def collect(plan: Plan, rows: list[Row], nominal: NominalRun | None) -> SweepRes
         rigid = any(g.get("rigid_sweet_spot") is not None for g in got)
         conditions.append(SweepCondition(c.name, rigid,
                                          {k: [g.get(k) for g in got] for k in CONDITION_FIELDS}))
-    warnings = sorted({w for r in ordered for w in r.get("warnings", [])
-                       if not w.startswith("the barrel was not calibrated")})
+    seen: dict[str, list[int]] = {}  # each warning and the variants that gave it
+    for i, r in enumerate(ordered):
+        for w in r.get("warnings", []):
+            if not w.startswith("the barrel was not calibrated") and i not in seen.get(w, []):
+                seen.setdefault(w, []).append(i)
+    warnings = [f"{w} ({_which(plan, idx)})" for w, idx in sorted(seen.items())]
     failed = sum(r["error"] is not None for r in ordered)
     if failed:
         warnings.insert(0, f"{failed} of {len(ordered)} variants have no result (see errors)")

@@ -15,6 +15,7 @@ residual compliance is the difference of two sums that agree to a few digits.
 from __future__ import annotations
 
 import json
+import re
 from dataclasses import replace
 from pathlib import Path
 
@@ -337,3 +338,16 @@ def test_a_binary_journal_is_refused_cleanly(tmp_path, counted):
     journal.write_bytes(b"\xff\xfe\x00garbage")
     with pytest.raises(UsageProblem, match="not a text file"):
         run_sweep(plan, journal_at=journal, resume=True)
+
+
+def test_a_warning_names_the_variants_it_came_from():
+    """A warning of some variants says which (by their values), one of every variant says
+    so: a user can find the variant to look at."""
+    plan = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=20m/s:70m/s:3"], engine="rigid")
+    warnings = run_sweep(plan).warnings
+    edge = [w for w in warnings if "search window's edge" in w]
+    assert edge and all(w.endswith(")") for w in edge)
+    named = " ".join(edge)
+    for speed in ("pitch_speed=20 m/s", "pitch_speed=45 m/s", "pitch_speed=70 m/s"):
+        assert named.count(speed) == 1, (speed, edge)  # each variant's edge, once
+    assert all(re.search(r"\((\d+ of 3 variants: |all 3 variants)", w) for w in edge)

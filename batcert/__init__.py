@@ -1,3 +1,27 @@
-"""batcert: bat certification from YAML specs with a reduced-order ball-bat impact engine."""
+"""batcert: bat certification from YAML specs with a reduced-order ball-bat impact engine.
 
-__version__ = "0.2.0"
+As a library (docs/api.md)::
+
+    import batcert
+    result = batcert.run("ash-34", "ncaa-bbcor", engine="rigid")
+    result.value, result.verdict
+
+The functions of :mod:`batcert.api` are available here; they are imported on first use, so that
+``import batcert`` (and every command line start-up) stays light.
+"""
+
+from batcert.version import __version__
+
+__all__ = ["__version__", "compare", "design", "league", "load_bat", "load_protocol", "reduce",
+           "run", "sweep", "use_cache"]
+
+
+def __getattr__(name: str):
+    if name in __all__:
+        from batcert import api
+        return getattr(api, name)
+    raise AttributeError(f"module 'batcert' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *__all__])

@@ -15,8 +15,9 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import click  # noqa: E402
 
-from batcert import __version__, console  # noqa: E402
+from batcert import console  # noqa: E402
 from batcert.errors import InputError  # noqa: E402
+from batcert.version import __version__  # noqa: E402
 
 OUTPUT_EXIT_CODE = """  4  the reports cannot be written (permissions, full disk, a path that is a file)"""
 STOPPED_EXIT_CODES = """  130  interrupted (Ctrl-C); no partial or temporary file is left
@@ -107,17 +108,12 @@ def _sigterm_as_interrupt():
 
 
 def _use_cache() -> None:
-    """Keep hollow bats' barrel shells and every bat's beam modes in the cache directory
-    (batcert.cache) between runs: a wall costs 0.1-0.3 s to compute and its scipy import
-    0.15 s more; a bat's modes 5 ms per support and pivot; likewise a viscoelastic ball's fit
-    (about a second) and its rigid-wall table (about 20 ms)."""
-    from batcert.cache import ArrayStore
-    from batcert.physics import stores
-
-    stores.use("barrel", ArrayStore("barrels", stores.CODE["barrel"]))
-    stores.use("modes", ArrayStore("modes", stores.CODE["modes"]))
-    stores.use("ball-fit", ArrayStore("ball-fits", stores.CODE["ball-fit"]))
-    stores.use("ball-wall", ArrayStore("ball-walls", stores.CODE["ball-wall"]))
+    """Keep costly intermediate results in the cache directory between runs, as the library
+    does (:func:`batcert.api.use_cache`): a wall costs 0.1-0.3 s to compute and its scipy
+    import 0.15 s more; a bat's modes 5 ms per support and pivot; likewise a viscoelastic
+    ball's fit (about a second) and its rigid-wall table (about 20 ms)."""
+    from batcert.api import use_cache
+    use_cache()
 
 
 def _formats(value: str) -> list[str]:

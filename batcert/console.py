@@ -142,8 +142,8 @@ def print_json(data: Any) -> None:
 def print_results(command: str, results: list[Any]) -> None:
     """A command's ``--json`` output: the one envelope of every command (docs/results-json.md)
     around its ``results``."""
-    from batcert import __version__
     from batcert.results.serialise import envelope
+    from batcert.version import __version__
     print_json(envelope(command, results, __version__))
 
 

@@ -18,7 +18,9 @@ PACKAGE = Path(str(resources.files(batcert)))
 
 # layer -> layers (package folders or top-level modules) it may import, besides itself
 ALLOWED = {
-    "units": set(), "errors": set(), "conventions": set(), "__init__": set(), "cache": set(),
+    "units": set(), "errors": set(), "conventions": set(), "version": set(), "cache": set(),
+    # the package's top: its version, and the library's functions (imported on first use)
+    "__init__": {"version", "api"},
     "physics": set(),
     "methods": {"physics"},
     "engines": {"physics"},
@@ -29,19 +31,21 @@ ALLOWED = {
     "specs": {"units", "errors", "conventions", "physics", "methods"},
     "model": {"units", "errors", "conventions", "physics", "specs", "results"},
     "runner": {"units", "errors", "conventions", "physics", "methods", "engines", "specs",
-               "model", "results", "__init__"},
+               "model", "results", "version"},
     "reports": {"units", "errors", "results", "methods", "cache"},
-    "analysis": {"units", "results", "reports", "__init__"},
+    "analysis": {"units", "results", "reports", "version"},
     "sweeps": {"units", "errors", "conventions", "physics", "methods", "engines", "specs",
-               "model", "results", "runner", "__init__"},
+               "model", "results", "runner", "version"},
     "lab": {"units", "errors", "conventions", "physics", "methods", "engines", "specs", "model",
-            "runner", "results", "__init__"},
+            "runner", "results", "version"},
     "uncertainty": {"units", "errors", "conventions", "physics", "methods", "engines",
-                    "specs", "model", "results", "runner", "__init__"},
+                    "specs", "model", "results", "runner", "version"},
     "commands": {"units", "errors", "conventions", "physics", "engines", "specs", "model",
-                 "results", "runner", "analysis", "sweeps", "lab", "uncertainty", "__init__"},
-    "console": {"units", "reports", "results", "__init__"},
-    "cli": {"__init__", "console", "errors", "commands", "engines", "specs", "units", "reports",
+                 "results", "runner", "analysis", "sweeps", "lab", "uncertainty", "version"},
+    "console": {"units", "reports", "results", "version"},
+    # the library: the commands' functions and the cache it keeps, typed results
+    "api": {"commands", "physics", "cache", "results"},
+    "cli": {"api", "version", "__init__", "console", "errors", "commands", "engines", "specs", "units", "reports",
             "runner", "cache", "physics"},
     "__main__": {"cli"},
 }

@@ -15,7 +15,6 @@ from collections.abc import Sequence
 from dataclasses import asdict
 from typing import TYPE_CHECKING
 
-from batcert import __version__
 from batcert.analysis.claims import evaluate_claim, findings
 from batcert.results.compare import (
     BatCondition,
@@ -29,6 +28,7 @@ from batcert.results.compare import (
 )
 from batcert.results.run import RunResult
 from batcert.results.serialise import utc_now
+from batcert.version import __version__
 
 if TYPE_CHECKING:
     from batcert.specs.study import ClaimSpec

@@ -15,11 +15,11 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from batcert import __version__
 from batcert.results.league import BatLeagueResult, LeagueResult, RuleResult
 from batcert.results.run import RunResult
 from batcert.results.serialise import utc_now
 from batcert.units import INCH, OUNCE
+from batcert.version import __version__
 
 if TYPE_CHECKING:
     from batcert.model.build import BuiltBat

@@ -7,7 +7,6 @@ import math
 
 import numpy as np
 
-from batcert import __version__
 from batcert.commands.inputs import load_protocol_any
 from batcert.lab.certify import DECISION_RULES, MC_DRAWS, certify, guard_band
 from batcert.lab.session import load_lab_session
@@ -15,6 +14,7 @@ from batcert.results.lab import LabHit, LabLocation, LabResult
 from batcert.results.serialise import utc_now
 from batcert.runner.runner import decide, identification
 from batcert.specs.resolve import display_path
+from batcert.version import __version__
 
 
 def _none(x: float) -> float | None:

@@ -14,7 +14,6 @@ from typing import Any
 
 import numpy as np
 
-from batcert import __version__
 from batcert.engines.base import Engine, ImpactBatch, ImpactOutcome
 from batcert.errors import Collector, InputError, Problem
 from batcert.methods.metrics import AGGREGATES, METRICS, ImpactMetrics, impact_metrics
@@ -32,6 +31,7 @@ from batcert.specs.ball import BallSpec
 from batcert.specs.common import split_field
 from batcert.specs.protocol import LimitSpec, ProtocolSpec
 from batcert.specs.resolve import display_path
+from batcert.version import __version__
 
 
 @dataclass(frozen=True)

@@ -130,7 +130,7 @@ def _no_constant(name: str) -> None:
 def sweep_key(plan: Plan) -> str:
     """What makes two sweeps the same: the input files, the varied values, the engine and
     the batcert version."""
-    from batcert import __version__
+    from batcert.version import __version__
     b, p = plan.base.bat, plan.base.protocol
     data = [b.sha256, p.sha256, plan.ball.sha256, plan.engine, __version__,
             [[a.name, list(a.values)] for a in plan.axes]]

@@ -16,7 +16,6 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from batcert import __version__
 from batcert.errors import InputError
 from batcert.model.build import BuiltBat, build_bat
 from batcert.results.run import RunResult
@@ -32,6 +31,7 @@ from batcert.specs.ball import BallSpec
 from batcert.specs.resolve import display_path
 from batcert.sweeps.variants import Axis, Case, ParameterError
 from batcert.units import si_unit
+from batcert.version import __version__
 
 CHUNK_SIZE = 4  # variants per chunk: the unit of work of a worker, and of resuming
 MAX_VARIANTS = 100_000  # variants of one sweep, all axes together (a grid multiplies them):

@@ -41,11 +41,6 @@ Exit codes:
 FORMATS = ("md", "html", "json")
 
 
-class _Exit(Exception):
-    def __init__(self, code: int):
-        self.code = code
-
-
 def _guard(func):
     """Map input problems to exit code 3 and lookup and usage problems (an unknown shipped
     name or engine, fewer than two bats) to 2, with one clear message."""

@@ -264,12 +264,6 @@ def _check_angle(value: str, unit, dimension: str, example: str) -> None:
                         f"e.g. '{example}'")
 
 
-@lru_cache(maxsize=64)
-def _factor(si_unit: str, unit: str) -> float:
-    ureg = registry()
-    return float(ureg.Quantity(1.0, si_unit).to(unit).magnitude)
-
-
 # Conversion factors for display, so reports need not import pint (computed from Units section
 # of docs/references.md: 1 in = 0.0254 m, 1 mph = 0.44704 m/s, 1 oz = 28.3495 g).
 _US: dict[str, tuple[str, float]] = {

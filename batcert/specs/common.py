@@ -72,12 +72,6 @@ def spec_from(cls: type[T], values: dict[str, Any], **extra: Any) -> T:
     return cls(**{k: v for k, v in values.items() if k in names}, **extra)
 
 
-def schema_matches(schema: Schema, cls: type, extra: tuple[str, ...] = ("source",)) -> bool:
-    """Whether a spec dataclass has exactly the schema's fields (plus ``extra``)."""
-    names = {f.name for f in fields(cls)} - set(extra)
-    return names == set(schema.names())
-
-
 def load_checked(path: str | Path, schema: Schema, data: Located) -> dict[str, Any]:
     """Validate ``data`` against ``schema``; raise every problem of the file at once."""
     from batcert.specs.schema import validate

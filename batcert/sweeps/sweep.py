@@ -67,10 +67,6 @@ class Plan:
         """Every grid point, the first axis outermost (row-major)."""
         return list(itertools.product(*(a.values for a in self.axes)))
 
-    @property
-    def impacts_per_variant(self) -> int:
-        return len(self.base.protocol.conditions)
-
     def chunks(self) -> list[Chunk]:
         pts = list(enumerate(self.points))
         names = tuple(a.name for a in self.axes)

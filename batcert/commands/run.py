@@ -13,7 +13,7 @@ from batcert.runner.runner import run_protocols
 def run(bat: LoadedBat, protocols: list[ProtocolInputs], engine: str = "flexible",
         on_step=None, **engine_options) -> list[RunResult]:
     """Run ``bat`` under every protocol with one engine (``on_step``: see
-    :func:`~batcert.runner.runner.drive`)."""
+    :func:`~batcert.runner.bench.drive`)."""
     eng = get_engine(engine, **engine_options)
     return run_protocols([(bat.built, p.protocol, p.ball) for p in protocols], eng,
                          on_step=on_step)

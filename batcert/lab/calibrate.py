@@ -3,7 +3,7 @@ metric at the certified location equals the measured value, with its uncertainty
 equivalent hoop frequency a bat file can state (``measured.hoop_frequency``).
 
 The model's metric at one impact point is solved with the protocol's stationary-bat condition
-(:class:`batcert.runner.runner.Bench`). The scale is found by Brent's method within the
+(:class:`batcert.runner.bench.Bench`). The scale is found by Brent's method within the
 calibration bounds of :mod:`batcert.model.calibrate` (x0.25 to x4); its standard uncertainty is
 the measurement's combined standard uncertainty divided by the slope of the model's metric at
 the root (first-order propagation, GUM 5.1.2). The metric need not be monotonic in the barrel's
@@ -33,8 +33,8 @@ class BarrelFit:
 
 def _model_metric(session, protocol, ball, engine, location: float, scale: float) -> float:
     from batcert.methods.metrics import METRICS
+    from batcert.runner.bench import Bench
     from batcert.runner.conditions import conditions_from_spec
-    from batcert.runner.runner import Bench
     built = session.built
     model = replace(built.model, barrel_stiffness_scale=built.model.barrel_stiffness_scale * scale)
     bench = Bench(replace(built, model=model), ball, engine, protocol.pivot, protocol.support)

@@ -25,8 +25,8 @@ from batcert.results.run import BarrelRange
 
 if TYPE_CHECKING:
     from batcert.methods.metrics import Aggregate, Metric
+    from batcert.runner.bench import Bench
     from batcert.runner.conditions import Condition
-    from batcert.runner.runner import Bench
     from batcert.specs.protocol import LimitSpec
 
 PLAUSIBLE_STIFFNESS = (0.8, 1.25)  # barrel stiffness scales explored [-]

@@ -17,8 +17,8 @@ from batcert.methods.metrics import ImpactMetrics, Metric
 from batcert.methods.rules import Peaks
 
 if TYPE_CHECKING:
+    from batcert.runner.bench import Bench
     from batcert.runner.conditions import Condition
-    from batcert.runner.runner import Bench
     from batcert.specs.protocol import LocationSpec
 
 
@@ -74,7 +74,7 @@ class Search:
 def locate_steps(bench: Bench, conds: list[Condition], location: LocationSpec, metric: Metric,
                  needs_metric_peak: bool, cop: float):
     """Sweep the window and locate each condition's sweet spot (and metric maximum), as
-    steps for :func:`batcert.runner.runner.drive`: the coarse sweep, then a small stencil
+    steps for :func:`batcert.runner.bench.drive`: the coarse sweep, then a small stencil
     around each peak estimated from it (a parabola through the best three coarse points), the
     peak taken by a parabola through the stencil's best three; a stencil whose best point is on
     its edge is moved there and solved again. Returns the :class:`Search`."""

@@ -31,8 +31,8 @@ from batcert.methods.metrics import AGGREGATES, METRICS
 from batcert.methods.rules import IMPACT_RULES
 from batcert.model.mass import mass_properties
 from batcert.results.run import RunResult
+from batcert.runner.bench import Bench, Steps
 from batcert.runner.conditions import conditions_from_spec
-from batcert.runner.runner import Bench, Steps
 from batcert.specs.protocol import ProtocolSpec
 
 POINTS = 5  # stencil points around each nominal impact point
@@ -75,7 +75,7 @@ def _flat(nominal: RunResult, rule) -> np.ndarray:
 
 
 def fit_steps(bench: Bench, protocol: ProtocolSpec, nominal: RunResult) -> Steps:
-    """Steps (for :func:`~batcert.runner.runner.drive`) that solve ``bench``'s bat on the
+    """Steps (for :func:`~batcert.runner.bench.drive`) that solve ``bench``'s bat on the
     stencils around the ``nominal`` run's impact points and return its :class:`Fit`."""
     p = protocol
     rule = IMPACT_RULES[p.impact_location.rule]

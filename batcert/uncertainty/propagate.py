@@ -22,7 +22,7 @@ at the sweet spot of a hollow bat by up to about 1e-3 (docs/validation.md, secti
 A hollow bat's barrel is computed once and scaled for a drawn mass or hoop frequency (exact);
 a drawn wall is a new barrel, which costs about a quarter of a second per draw. The draws are
 solved in chunks of :data:`CHUNK`, all protocols and draws of a chunk in the same engine
-batches (:func:`batcert.runner.runner.drive`).
+batches (:func:`batcert.runner.bench.drive`).
 """
 
 from __future__ import annotations
@@ -37,7 +37,8 @@ from batcert.engines.base import Engine
 from batcert.errors import InputError, UsageProblem
 from batcert.model.build import BuiltBat, build_bat
 from batcert.results.run import InputUncertainty, PredictedUncertainty, RunResult
-from batcert.runner.runner import Bench, decide, drive, run_protocols
+from batcert.runner.bench import Bench, drive
+from batcert.runner.runner import decide, run_protocols
 from batcert.runner.sampled import drawn_result, fit_steps
 from batcert.specs.ball import BallSpec
 from batcert.specs.bat import BatSpec

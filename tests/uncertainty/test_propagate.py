@@ -27,8 +27,9 @@ from batcert.errors import InputError
 from batcert.methods.metrics import AGGREGATES, METRICS
 from batcert.model.build import build_bat
 from batcert.physics.ritz import reduced_modes, ritz_basis
+from batcert.runner.bench import Bench, drive
 from batcert.runner.conditions import conditions_from_spec
-from batcert.runner.runner import Bench, drive, run_protocols
+from batcert.runner.runner import run_protocols
 from batcert.runner.sampled import POINTS, drawn_result, fit_steps
 from batcert.uncertainty.inputs import sampled
 from batcert.uncertainty.propagate import BASIS_MODES, DEFAULT_SEED, Job, draws, monte_carlo

@@ -366,7 +366,7 @@ def run(bats, protocols, samples, seed, engine, out_dir, formats, no_reports, as
         _figures(r, figures_dir, stem)
     clock.lap("reports")
     clock.report()
-    sys.exit(1 if any(r.verdict == "fail" for r in results) else 0)
+    sys.exit(max(r.return_code() for r in results))
 
 
 def _load_batch(bats: tuple[str, ...]) -> list:
@@ -655,8 +655,7 @@ def compare(bats, protocols, study, reference, engine, out_dir, formats, no_repo
     _figures(result, figures_dir)
     clock.lap("reports")
     clock.report()
-    failed = any(v == "fail" for p in result.protocols for v in p.verdicts.values())
-    sys.exit(1 if failed else 0)
+    sys.exit(result.return_code())
 
 
 @main.command(epilog=LEAGUE_EXIT_CODES + """
@@ -685,7 +684,7 @@ def league(league_id, bats, engine, allow_not_modelled, out_dir, formats, no_rep
     _deliver(result, console.league_summary, target, fmts, as_json)
     clock.lap("reports")
     clock.report()
-    sys.exit(0 if result.passed(allow_not_modelled) else 1)
+    sys.exit(result.return_code(allow_not_modelled))
 
 
 SWEEP_EXIT_CODES = """\b
@@ -791,7 +790,7 @@ def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine
     _figures(result, figures_dir)
     clock.lap("reports")
     clock.report()
-    sys.exit(0)
+    sys.exit(result.return_code())
 
 
 @main.command(epilog=DESIGN_EXIT_CODES + """
@@ -832,7 +831,7 @@ def design(bat, protocol, parameter, range_text, points, tolerance, workers, sch
     _figures(result, figures_dir)
     clock.lap("reports")
     clock.report()
-    sys.exit(0 if result.design.roots else 1)
+    sys.exit(result.return_code())
 
 
 REDUCE_EXIT_CODES = """\b
@@ -893,7 +892,7 @@ def reduce(session, protocol, bat, decision_rule, calibrated_bat, engine, out_di
         atomic_write_text(calibrated_bat, calibration)
         console.note(f"wrote the calibrated bat to {calibrated_bat}")
     _figures(result, figures_dir)
-    sys.exit(0 if result.verdict in ("pass", None) and result.value is not None else 1)
+    sys.exit(result.return_code())
 
 
 def _session_inputs(session: str, bat: str | None) -> list[Path]:

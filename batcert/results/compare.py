@@ -154,6 +154,10 @@ class ComparisonResult(Serialisable):
     created: str
     figures: list[StudyFigure] = field(default_factory=list)
 
+    def return_code(self) -> int:
+        """1 when a protocol with a limit fails for at least one bat, else 0."""
+        return 1 if any(v == "fail" for p in self.protocols for v in p.verdicts.values()) else 0
+
     def protocol(self, pid: str) -> ProtocolComparison:
         return next(p for p in self.protocols if p.protocol == pid)
 

@@ -89,3 +89,8 @@ class LabResult(Serialisable):
     # location_from_tip [m], at_certified_location, difference = measured - model)
     model: dict[str, Any] = field(default_factory=dict)
     bat_identification: dict[str, str] = field(default_factory=dict)  # maker, model, serial, lot
+
+    def return_code(self) -> int:
+        """0 when the measured value passes (or the protocol sets no limit), 1 when it fails or
+        nothing could be certified."""
+        return 0 if self.verdict in ("pass", None) and self.value is not None else 1

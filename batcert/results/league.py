@@ -66,6 +66,11 @@ class LeagueResult(Serialisable):
     batcert_version: str
     created: str
 
+    def return_code(self, allow_not_modelled: bool = False) -> int:
+        """0 only when every bat passes every rule that applies to it (a rule not modelled
+        passes only with ``allow_not_modelled``), else 1."""
+        return 0 if self.passed(allow_not_modelled) else 1
+
     def passed(self, allow_not_modelled: bool = False) -> bool:
         ok = {"pass", "incomplete"} if allow_not_modelled else {"pass"}
         return all(b.verdict in ok for b in self.bats)

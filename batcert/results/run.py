@@ -180,3 +180,8 @@ class RunResult(Serialisable):
     statement: str = "predicted"
     model_offset: str = ""
     bat_identification: dict[str, str] = field(default_factory=dict)  # maker, model, serial, lot
+
+    def return_code(self) -> int:
+        """The command line's exit code for this result: 1 when the predicted verdict fails,
+        else 0 (also without a limit)."""
+        return 1 if self.verdict == "fail" else 0

@@ -91,6 +91,10 @@ class SweepResult(Serialisable):
     design: DesignResult | None = None
     bat_identification: dict[str, str] = field(default_factory=dict)  # maker, model, serial, lot
 
+    def return_code(self) -> int:
+        """A sweep: 0. A design: 0 when a value meets the limit, 1 when none does."""
+        return 0 if self.design is None or self.design.roots else 1
+
     @property
     def parameter(self) -> str | list[str]:
         names = [a.name for a in self.axes]

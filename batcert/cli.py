@@ -414,9 +414,21 @@ def inspect(file, pivot, as_json):
     """Show a bat's mass properties, COP and bending modes (or a ball's COR and contact time)."""
     from batcert.commands import inspect as inspecting
     from batcert.commands.inputs import detect_kind, load_bat_any
+    from batcert.reports.inspect_view import ball_view, bat_view
     from batcert.specs.resolve import resolve
     from batcert.units import UnitError, parse_quantity
-    path = str(resolve("bat", file)) if not Path(file).is_file() else file
+    if Path(file).is_file():
+        path = file
+    else:  # a shipped bat, else a shipped ball
+        from batcert.specs.resolve import NotFound
+        try:
+            path = str(resolve("bat", file))
+        except NotFound:
+            try:
+                path = str(resolve("ball", file))
+            except NotFound:
+                raise click.UsageError(f"{file!r} is neither a file nor a shipped bat or ball "
+                                       "(batcert list bats, batcert list balls)") from None
     kind = detect_kind(path)
     if kind not in ("bat", "ball"):
         raise click.UsageError(f"{file} is a {kind} file; inspect takes a bat or a ball "
@@ -424,7 +436,7 @@ def inspect(file, pivot, as_json):
     if kind == "ball":
         from batcert.specs.ball import load_ball
         info = inspecting.inspect_ball(load_ball(path))
-        console.print_results("inspect", [info]) if as_json else _show_ball(info)
+        console.print_results("inspect", [info]) if as_json else console.blocks(ball_view(info))
         return
     p = None
     if pivot is not None:
@@ -433,87 +445,7 @@ def inspect(file, pivot, as_json):
         except UnitError as exc:
             raise click.BadParameter(str(exc), param_hint="--pivot") from None
     info = inspecting.inspect_bat(load_bat_any(path).built, p)
-    console.print_results("inspect", [info]) if as_json else _show_bat(info)
-
-
-def _show_bat(info: dict) -> None:
-    from batcert.reports.table import Table
-    from batcert.units import show
-    g = info["geometry"]
-    console.kv_table(f"{info['name']}  ({info['construction']}, {info['material']})", [
-        ("length", str(show(info["length"], "length"))),
-        ("pivot (from knob)", str(show(info["pivot"], "length"))),
-        ("mass", f"{show(info['mass'], 'mass')}   geometry {show(g['mass'], 'mass')}"),
-        ("CG (from pivot)", f"{show(info['cg'], 'length')}   geometry {show(g['cg'], 'length')}"),
-        ("MOI about pivot", f"{show(info['moi_pivot'], 'moi', 4)}   geometry "
-                            f"{show(g['moi_pivot'], 'moi', 4)}"),
-        ("COP (from pivot)", str(show(info["cop"], "length"))),
-        ("barrel diameter", str(show(info["barrel_diameter"], "length", 4))),
-        ("reconciliation", info["reconciliation"]["description"]),
-    ])
-    if info.get("modes_hz"):
-        rows = []
-        for j, f in enumerate(info["modes_hz"][:6]):
-            nodes = info["mode_nodes"][j] if j < len(info["mode_nodes"]) else []
-            rows.append([str(j + 1), f"{f:.0f}", ", ".join(f"{z * 100:.1f}" for z in nodes)])
-        console.table(Table(["mode", "frequency [Hz]", "nodes [cm from knob]"], rows,
-                            [False, True, True]), "free-free bending modes")
-    if info.get("barrel"):
-        from batcert.reports.format import flatten
-        console.kv_table("barrel (shell of revolution; SI: m, Hz)", list(flatten(info["barrel"])))
-
-
-_TEST_UNITS = {"cor": ("", 1.0, "{:.3f}"), "cylinder_cor": ("", 1.0, "{:.3f}"),
-               "peak_force": ("kN", 1e-3, "{:.2f}"), "collision_time": ("ms", 1e3, "{:.3f}"),
-               "contact_time": ("ms", 1e3, "{:.3f}"), "compression": ("N", 1.0, "{:.0f}")}
-
-
-def _show_ball(info: dict) -> None:
-    from batcert.reports.table import Table
-    from batcert.units import show
-
-    law = info["law"]
-    if law["model"] == "viscoelastic":
-        what = (f"viscoelastic: k0 = {law['stiffness']:.4g} N/m^a, a = {law['exponent']:.4g}, "
-                f"k_inf / k0 = {law['relaxed_fraction']:.3g}, tau = "
-                f"{law['relaxation_time'] * 1e6:.1f} us")
-    else:
-        what = f"power-law hysteresis: k1 = {law['k1']:.4g} N/m^alpha, alpha = {law['alpha']:g}"
-    rows = [("mass", str(show(info["mass"], "mass", 4))),
-            ("radius", f"{info['radius'] * 1e3:.1f} mm"), ("contact law", what)]
-    fit = info.get("fit")
-    if fit:
-        u = fit["parameter_uncertainty"]
-        rows.append(("fitted to the tests", f"chi-square {fit['chi2']:.2f} for {fit['dof']} "
-                     f"degrees of freedom; u(a) = {u['exponent']:.2g}, u(tau) = "
-                     f"{u['relaxation_time'] * 1e6:.2g} us"))
-    console.kv_table(info["name"], rows)
-    if info["tests"]:
-        table = []
-        for t in info["tests"]:
-            unit, factor, f = _TEST_UNITS[t["test"]]
-            cond = (f"{t['condition'] * 1e3:.2f} mm" if t["test"] == "compression"
-                    else f"{t['condition']:g} m/s")
-            if t["surface_diameter"]:
-                cond += f", {t['surface_diameter'] * 1e3:.1f} mm cylinder"
-            measured = f.format(t["value"] * factor)
-            if t["uncertainty"]:
-                measured += " +/- " + f.format(t["uncertainty"] * factor)
-            table.append([t["test"].replace("_", " "), cond, f"{measured} {unit}".strip(),
-                          f"{f.format(t['model'] * factor)} {unit}".strip(),
-                          "" if t["residual"] is None else f"{t['residual']:+.2f}"])
-        console.table(Table(["test", "condition", "measured", "law", "(law - measured) / u"],
-                            table, [False, False, True, True, True]),
-                      "ball tests (the uncertainty is one standard uncertainty)")
-    rows = [[f"{v:g}", f"{e:.3f}", f"{ct * 1e3:.2f}", f"{cl * 1e3:.2f}", f"{u * 1e3:.1f}",
-             f"{us * 1e3:.1f}", f"{f / 1e3:.1f}"]
-            for v, e, ct, cl, u, us, f in zip(info["speeds"], info["cor"], info["contact_time"],
-                                              info["collision_time"], info["max_compression"],
-                                              info["separation_compression"], info["peak_force"],
-                                              strict=True)]
-    console.table(Table(["speed [m/s]", "COR", "contact time [ms]", "99 % impulse [ms]",
-                         "max compression [mm]", "left at separation [mm]", "peak force [kN]"],
-                        rows, [True] * 7), "against a rigid wall")
+    console.print_results("inspect", [info]) if as_json else console.blocks(bat_view(info))
 
 
 @main.command(epilog=CHECK_EXIT_CODES + """

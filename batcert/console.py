@@ -227,6 +227,16 @@ def _plain_table(t: Table, title: str) -> None:
     sys.stdout.write("\n".join(lines) + "\n")
 
 
+def blocks(view: Sequence[tuple[str, Any]]) -> None:
+    """Titled blocks of a view (:mod:`batcert.reports.inspect_view`): key-value rows or a
+    table, each printed as such."""
+    for title, content in view:
+        if isinstance(content, Table):
+            table(content, title)
+        else:
+            kv_table(title, content)
+
+
 def kv_table(title: str, rows: Sequence[tuple[str, Any]]) -> None:
     t = Table(["", ""], [[k, v] for k, v in rows])
     if not _terminal(sys.stdout):

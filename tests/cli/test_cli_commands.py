@@ -284,3 +284,11 @@ def test_interrupt_exits_130_without_leftovers(batcert_cli, tmp_path, monkeypatc
     result = batcert_cli("run", ASH, "-p", "proposed", "--out", tmp_path / "reports")
     assert result.exit_code == 130 and "interrupted" in result.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+def test_inspect_takes_a_shipped_ball_by_name(batcert_cli):
+    res = batcert_cli("inspect", "collegiate-baseball")
+    assert res.exit_code == 0, res.stderr
+    assert "viscoelastic" in res.stdout and "against a rigid wall" in res.stdout
+    res = batcert_cli("inspect", "no-such-thing")
+    assert res.exit_code == 2 and "neither a file nor a shipped bat or ball" in res.stderr

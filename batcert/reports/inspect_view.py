@@ -1,0 +1,96 @@
+"""What ``batcert inspect`` shows of a bat or a ball, as blocks for the terminal: each a title
+with either key-value rows or a :class:`~batcert.reports.table.Table` (the console prints
+them, :func:`batcert.console.blocks`)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from batcert.reports.format import flatten
+from batcert.reports.table import Table
+from batcert.units import show
+
+# a titled block: key-value rows, or a table
+Block = tuple[str, "list[tuple[str, Any]] | Table"]
+
+
+def bat_view(info: dict) -> list[Block]:
+    """``inspect``'s view of a bat (:func:`batcert.commands.inspect.inspect_bat`'s dict)."""
+    out: list[Block] = []
+    g = info["geometry"]
+    out.append((f"{info['name']}  ({info['construction']}, {info['material']})", [
+        ("length", str(show(info["length"], "length"))),
+        ("pivot (from knob)", str(show(info["pivot"], "length"))),
+        ("mass", f"{show(info['mass'], 'mass')}   geometry {show(g['mass'], 'mass')}"),
+        ("CG (from pivot)", f"{show(info['cg'], 'length')}   geometry {show(g['cg'], 'length')}"),
+        ("MOI about pivot", f"{show(info['moi_pivot'], 'moi', 4)}   geometry "
+                            f"{show(g['moi_pivot'], 'moi', 4)}"),
+        ("COP (from pivot)", str(show(info["cop"], "length"))),
+        ("barrel diameter", str(show(info["barrel_diameter"], "length", 4))),
+        ("reconciliation", info["reconciliation"]["description"]),
+    ]))
+    if info.get("modes_hz"):
+        rows = []
+        for j, f in enumerate(info["modes_hz"][:6]):
+            nodes = info["mode_nodes"][j] if j < len(info["mode_nodes"]) else []
+            rows.append([str(j + 1), f"{f:.0f}", ", ".join(f"{z * 100:.1f}" for z in nodes)])
+        out.append(("free-free bending modes",
+                    Table(["mode", "frequency [Hz]", "nodes [cm from knob]"], rows,
+                          [False, True, True])))
+    if info.get("barrel"):
+        out.append(("barrel (shell of revolution; SI: m, Hz)", list(flatten(info["barrel"]))))
+    return out
+
+
+_TEST_UNITS = {"cor": ("", 1.0, "{:.3f}"), "cylinder_cor": ("", 1.0, "{:.3f}"),
+               "peak_force": ("kN", 1e-3, "{:.2f}"), "collision_time": ("ms", 1e3, "{:.3f}"),
+               "contact_time": ("ms", 1e3, "{:.3f}"), "compression": ("N", 1.0, "{:.0f}")}
+
+
+def ball_view(info: dict) -> list[Block]:
+    """``inspect``'s view of a ball (:func:`batcert.commands.inspect.inspect_ball`'s dict)."""
+    out: list[Block] = []
+    law = info["law"]
+    if law["model"] == "viscoelastic":
+        what = (f"viscoelastic: k0 = {law['stiffness']:.4g} N/m^a, a = {law['exponent']:.4g}, "
+                f"k_inf / k0 = {law['relaxed_fraction']:.3g}, tau = "
+                f"{law['relaxation_time'] * 1e6:.1f} us")
+    else:
+        what = f"power-law hysteresis: k1 = {law['k1']:.4g} N/m^alpha, alpha = {law['alpha']:g}"
+    rows = [("mass", str(show(info["mass"], "mass", 4))),
+            ("radius", f"{info['radius'] * 1e3:.1f} mm"), ("contact law", what)]
+    fit = info.get("fit")
+    if fit:
+        u = fit["parameter_uncertainty"]
+        rows.append(("fitted to the tests", f"chi-square {fit['chi2']:.2f} for {fit['dof']} "
+                     f"degrees of freedom; u(a) = {u['exponent']:.2g}, u(tau) = "
+                     f"{u['relaxation_time'] * 1e6:.2g} us"))
+    out.append((info["name"], rows))
+    if info["tests"]:
+        table = []
+        for t in info["tests"]:
+            unit, factor, f = _TEST_UNITS[t["test"]]
+            cond = (f"{t['condition'] * 1e3:.2f} mm" if t["test"] == "compression"
+                    else f"{t['condition']:g} m/s")
+            if t["surface_diameter"]:
+                cond += f", {t['surface_diameter'] * 1e3:.1f} mm cylinder"
+            measured = f.format(t["value"] * factor)
+            if t["uncertainty"]:
+                measured += " +/- " + f.format(t["uncertainty"] * factor)
+            table.append([t["test"].replace("_", " "), cond, f"{measured} {unit}".strip(),
+                          f"{f.format(t['model'] * factor)} {unit}".strip(),
+                          "" if t["residual"] is None else f"{t['residual']:+.2f}"])
+        out.append(("ball tests (the uncertainty is one standard uncertainty)",
+                    Table(["test", "condition", "measured", "law", "(law - measured) / u"],
+                          table, [False, False, True, True, True])))
+    rows = [[f"{v:g}", f"{e:.3f}", f"{ct * 1e3:.2f}", f"{cl * 1e3:.2f}", f"{u * 1e3:.1f}",
+             f"{us * 1e3:.1f}", f"{f / 1e3:.1f}"]
+            for v, e, ct, cl, u, us, f in zip(info["speeds"], info["cor"], info["contact_time"],
+                                              info["collision_time"], info["max_compression"],
+                                              info["separation_compression"], info["peak_force"],
+                                              strict=True)]
+    out.append(("against a rigid wall",
+                Table(["speed [m/s]", "COR", "contact time [ms]", "99 % impulse [ms]",
+                       "max compression [mm]", "left at separation [mm]", "peak force [kN]"],
+                      rows, [True] * 7)))
+    return out

@@ -643,6 +643,18 @@ Exit codes:
 """ + STOPPED_EXIT_CODES
 
 
+class _WithParameters(click.Command):
+    """A command whose help ends with the sweep parameters, read from their registry when the
+    help is shown (not at start-up)."""
+
+    def format_epilog(self, ctx, formatter) -> None:
+        super().format_epilog(ctx, formatter)
+        from batcert.commands.sweep import parameters_help
+        formatter.write_paragraph()
+        with formatter.indentation():
+            formatter.write_text(parameters_help())
+
+
 def _scale_options(func):
     """--workers and --scheduler, shared by sweep and design."""
     for option in reversed([
@@ -674,10 +686,8 @@ Examples:
   batcert sweep aluminium-34 -p ncaa-bbcor --vary wall=50%:150%:201 --workers 2 --resume
 
 \b
-Parameters: wall, youngs_modulus, density, barrel_diameter (the bat's geometry and material;
-the variants' mass properties then come from the geometry), mass, moi, hoop_frequency
-(measured properties), pitch_speed, bat_angular_speed, relative_speed (the protocol's speeds).
-Values: START:STOP:N with units (2mm:3.5mm:7) or as percent of nominal (60%:140%:9).""")
+Values: START:STOP:N with units (2mm:3.5mm:7) or as percent of nominal (60%:140%:9).""",
+              cls=_WithParameters)
 @click.argument("bat", shell_complete=_complete("bat"))
 @click.option("--protocol", "-p", "protocol", required=True, shell_complete=_complete("protocol"),
               help="Shipped protocol id or protocol YAML path.")
@@ -730,7 +740,8 @@ def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine
 \b
 Examples:
   batcert design bats/aluminium-34.yaml -p ncaa-bbcor --solve wall
-  batcert design bbcor-alloy-34 -p ncaa-bbcor --solve hoop_frequency --range 1200Hz:3000Hz""")
+  batcert design bbcor-alloy-34 -p ncaa-bbcor --solve hoop_frequency --range 1200Hz:3000Hz""",
+              cls=_WithParameters)
 @click.argument("bat", shell_complete=_complete("bat"))
 @click.option("--protocol", "-p", "protocol", required=True, shell_complete=_complete("protocol"),
               help="Shipped protocol id or protocol YAML path (it must set a limit).")

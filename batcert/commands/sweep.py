@@ -108,3 +108,21 @@ def run_design(bat: str, protocol: str, parameter: str, range_text: str | None =
     curve = run_sweep(plan, workers=workers, scheduler=scheduler, on_progress=on_progress)
     curve.design = solve(plan, curve, tol)
     return curve
+
+
+_CHANGES = {"geometry": "the bat's geometry and material; the variants' mass properties then "
+                        "come from the geometry",
+            "measured": "measured properties", "protocol": "the protocol's speeds"}
+
+
+def parameters_help() -> str:
+    """The parameters a sweep or design can vary, from the registry
+    (:data:`batcert.sweeps.variants.PARAMETERS`), grouped by what they change: the help's
+    closing paragraph."""
+    from batcert.sweeps.variants import PARAMETERS
+    groups: dict[str, list[str]] = {}
+    for p in PARAMETERS.values():
+        groups.setdefault(p.changes, []).append(p.name)
+    return "Parameters: " + "; ".join(f"{', '.join(names)} ({_CHANGES.get(changes, changes)})"
+                                      for changes, names in groups.items()) + "."
+

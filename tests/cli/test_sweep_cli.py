@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shlex
 from pathlib import Path
 
@@ -335,3 +336,18 @@ def test_a_geometric_sweep_says_why_its_nominal_row_is_not_runs(batcert_cli):
     # a parameter of the test, not of the geometry, keeps the measured bat: nothing to say
     res = batcert_cli(*SWEEP, "--no-reports")
     assert "built from the bat's geometry" not in res.stdout
+
+
+def test_the_help_and_the_docs_list_every_parameter_of_the_registry(batcert_cli):
+    """A new sweep parameter needs its registry entry only for the help (generated), and the
+    docs table fails this test until it has its row."""
+    from batcert.sweeps.variants import PARAMETERS
+    for command in ("sweep", "design"):
+        text = " ".join(batcert_cli(command, "--help").stdout.split())
+        for name in PARAMETERS:
+            assert name in text.split("Parameters:")[1], (command, name)
+    rows = re.findall(r"^\| `(\w+)` \| ([\w ]+) \|", (REPO / "docs" / "sweeps.md").read_text(
+        encoding="utf-8"), re.M)
+    assert [r[0] for r in rows] == list(PARAMETERS)
+    assert all(p.dimension.replace("_", " ") == unit
+               for (_, unit), p in zip(rows, PARAMETERS.values(), strict=True))

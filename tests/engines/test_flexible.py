@@ -626,6 +626,7 @@ def test_input_errors(r161):
 
 # -- the viscoelastic ball --------------------------------------------------------------------
 
+@pytest.mark.slow  # a reference integration with solve_ivp, 3-13 s
 @pytest.mark.parametrize("case", ["solid", "hollow"])
 def test_viscoelastic_ball_agrees_with_reference_integration(r161, case):
     # The viscoelastic law's branch variable integrated with the step's exponential stages

@@ -120,6 +120,7 @@ contact:
         (line_of(text, "[45 m/s"), "collision_time", message)]
 
 
+@pytest.mark.slow  # leave-one-out refits of the ball, 10-20 s
 def test_fit_refusal_points_at_the_test_at_fault(tmp_path):
     # the collegiate ball's tests with a COR of 0.9 at 85 ft/s (its file: 0.546): no law of
     # the four parameters passes within 3 uncertainties of every test (measured: 11 sigma)

@@ -147,6 +147,7 @@ def test_fit_refuses_a_test_without_uncertainty():
     assert exc.value.test == 6
 
 
+@pytest.mark.slow  # leave-one-out refits of the ball, 10-20 s
 @pytest.mark.parametrize("index", [1, 3])  # the COR at 10 m/s, at 58 m/s
 def test_fit_refuses_a_test_it_misses(index):
     # one COR 0.05 (10 of its uncertainties) above the law's, among tests of the law itself:
@@ -159,6 +160,7 @@ def test_fit_refuses_a_test_it_misses(index):
     assert exc.value.test == index
 
 
+@pytest.mark.slow  # leave-one-out refits of the ball, 10-20 s
 def test_fit_refuses_a_cor_of_09_at_58_m_s_among_the_collegiate_tests(collegiate):
     _, tests, mass, radius = collegiate
     tests = list(tests)
@@ -168,6 +170,7 @@ def test_fit_refuses_a_cor_of_09_at_58_m_s_among_the_collegiate_tests(collegiate
         fit_ball(tests, mass, radius)
 
 
+@pytest.mark.slow  # leave-one-out refits of the ball, 10-20 s
 @pytest.mark.parametrize("index, value", [(2, 0.9), (6, 1.2e-3)])  # COR 58 m/s, time 67 m/s
 def test_fit_refusal_points_at_the_inconsistent_collegiate_test(collegiate, index, value):
     # A bad point pulls the full fit towards itself, so its neighbour can carry the largest

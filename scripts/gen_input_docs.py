@@ -16,10 +16,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from batcert.analysis.claims import CLAIM_CHECKS  # noqa: E402
-from batcert.analysis.league import RULE_KINDS  # noqa: E402
 from batcert.specs.ball import BALL_SCHEMA  # noqa: E402
 from batcert.specs.bat import BAT_SCHEMA  # noqa: E402
+from batcert.specs.kinds import CLAIM_CHECKS, RULE_KINDS  # noqa: E402
 from batcert.specs.league import LEAGUE_SCHEMA  # noqa: E402
 from batcert.specs.materials import LIBRARY  # noqa: E402
 from batcert.specs.protocol import PROTOCOL_SCHEMA  # noqa: E402

@@ -1,9 +1,9 @@
 """The package's layers: no import cycles between modules, and each layer imports only the layers
 below it (DESIGN.md section 2: specs -> model -> engines -> runner -> results -> reports).
 
-Imports are read from the source (every ``import`` statement, also those inside functions, which
-still make one module depend on another), except those under ``if TYPE_CHECKING:``, which exist
-only for type checkers.
+Imports are read from the source: every ``import`` statement, also those inside functions (which
+still make one module depend on another) and those under ``if TYPE_CHECKING:`` (a type names a
+dependency too); no layer has an exemption.
 """
 
 from __future__ import annotations
@@ -25,15 +25,14 @@ ALLOWED = {
     "methods": {"physics"},
     "engines": {"physics"},
     "results": set(),
-    # the spec schemas take their names from the registries that hold each concept's function:
-    # methods/ (metrics, aggregates, impact rules) and, in analysis/, the claim checks and league
-    # rule kinds (see REGISTRIES)
+    # the spec schemas take their names from the registries of methods/ (metrics, aggregates,
+    # impact rules) and from specs/kinds.py (claim checks, league rule kinds)
     "specs": {"units", "errors", "conventions", "physics", "methods"},
     "model": {"units", "errors", "conventions", "physics", "specs", "results"},
     "runner": {"units", "errors", "conventions", "physics", "methods", "engines", "specs",
                "model", "results", "version"},
     "reports": {"units", "errors", "results", "methods", "cache"},
-    "analysis": {"units", "results", "reports", "version"},
+    "analysis": {"units", "specs", "model", "results", "reports", "version"},
     "sweeps": {"units", "errors", "conventions", "physics", "methods", "engines", "specs",
                "model", "results", "runner", "version"},
     "lab": {"units", "errors", "conventions", "physics", "methods", "engines", "specs", "model",
@@ -49,8 +48,6 @@ ALLOWED = {
             "runner", "cache", "physics"},
     "__main__": {"cli"},
 }
-# registry modules of analysis/ that the specs layer may read (they import nothing of specs/)
-REGISTRIES = {"batcert.analysis.claims", "batcert.analysis.league"}
 
 
 def _module_name(path: Path) -> str:
@@ -61,26 +58,14 @@ def _module_name(path: Path) -> str:
     return ".".join(parts)
 
 
-def _type_checking_lines(tree: ast.AST) -> set[int]:
-    lines: set[int] = set()
-    for node in ast.walk(tree):
-        if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test):
-            for sub in node.body:
-                lines.update(range(sub.lineno, (sub.end_lineno or sub.lineno) + 1))
-    return lines
-
-
 def import_graph() -> dict[str, set[str]]:
     """Module -> batcert modules it imports (at any depth in its code)."""
     modules = {_module_name(p): p for p in PACKAGE.rglob("*.py")}
     graph: dict[str, set[str]] = {}
     for name, path in modules.items():
         tree = ast.parse(path.read_text(encoding="utf-8"))
-        skip = _type_checking_lines(tree)
         deps: set[str] = set()
         for node in ast.walk(tree):
-            if getattr(node, "lineno", None) in skip:
-                continue
             if isinstance(node, ast.Import):
                 targets = [a.name for a in node.names]
             elif isinstance(node, ast.ImportFrom) and node.module:
@@ -143,8 +128,6 @@ def test_each_layer_imports_only_the_layers_below():
         for dep in deps:
             target = _layer(dep)
             if target == layer or target in ALLOWED[layer]:
-                continue
-            if layer == "specs" and dep in REGISTRIES:
                 continue
             wrong.append(f"{module} -> {dep}")
     assert wrong == []

@@ -1,17 +1,16 @@
 """Findings and claim checks of a bat comparison: what the numbers show, in words.
 
-:func:`findings` states per protocol the mean, spread and sign pattern of the relative performance
-P, and what the engine cannot show. :func:`evaluate_claim` tests one claim of a study file with the
-check registered for it in :data:`CLAIM_CHECKS` (name, meaning and function together; the study
-schema takes its names from here). A check returns ``supported``, ``not-supported`` or
-``not-testable`` (e.g. the sweet spot lies on the search window's edge) with the evidence; nothing
-is ever assumed supported.
+:func:`findings` states per protocol the mean, spread and sign pattern of the relative
+performance P, and what the engine cannot show. :func:`evaluate_claim` tests one claim of a
+study file with the check registered for it in :data:`CHECKS`, keyed by the names of
+:data:`batcert.specs.kinds.CLAIM_CHECKS` (their meanings, which the study schema reads). A check
+returns ``supported``, ``not-supported`` or ``not-testable`` (e.g. the sweet spot lies on the
+search window's edge) with the evidence; nothing is ever assumed supported.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from batcert.reports.format import percent
@@ -291,44 +290,19 @@ def _check_figure_sweet_spot(result: ComparisonResult, claim: ClaimSpec) -> tupl
     return ("supported" if ok else "not-supported"), "; ".join(parts) + "."
 
 
-@dataclass(frozen=True)
-class ClaimCheck:
-    """One way of testing a study's claim against a comparison: name, meaning, function."""
-
-    name: str
-    doc: str
-    check: Callable[[ComparisonResult, ClaimSpec], tuple[str, str]]
-
-
-CLAIM_CHECKS: dict[str, ClaimCheck] = {c.name: c for c in (
-    ClaimCheck("sign-disagreement", "P of the compared bat takes both signs (beyond `tolerance`) "
-               "across the protocols' conditions: the methods disagree on which bat is better.",
-               _check_sign_disagreement),
-    ClaimCheck("consistent-across-conditions", "In each protocol P has one sign in every "
-               "condition, beyond `tolerance`, and its range across conditions is smaller than "
-               "the range over `compare_with` (when given).", _check_consistent),
-    ClaimCheck("advantage", "`expected: shown`: the mean P of every compared bat exceeds "
-               "`tolerance` in every protocol; `not-shown`: in none of them.", _check_advantage),
-    ClaimCheck("lower-than", "The mean P under the first protocol is below the mean P under the "
-               "second by more than `tolerance` (a metric that ignores MOI underrates a light "
-               "bat).", _check_lower_than),
-    ClaimCheck("cop-not-sweet-spot", "For every bat and condition the sweet spot lies more than "
-               "`location_tolerance` from the centre of percussion.", _check_cop_not_sweet),
-    ClaimCheck("cop-offset-differs", "The mean sweet-spot-minus-COP offset differs between the "
-               "bats by more than `location_tolerance`.", _check_offset_differs),
-    ClaimCheck("sweet-spot-moves-less-than-rigid", "Across conditions with fixed speeds the "
-               "sweet spot moves less than `factor` times the movement of the rigid sweet spot "
-               "(Smith 2001 Eq. 7).", _check_sweet_spot_moves),
-    ClaimCheck("opposite-trends", "In the study figure `figure`, from the nominal value of "
-               "its parameter down to the smallest, the two `metrics` change in opposite "
-               "directions, each by more than `tolerance`, for every bat.",
-               _check_opposite_trends),
-    ClaimCheck("figure-sweet-spot-less-than-rigid", "In the study figure `figure` (a speed "
-               "swept), the sweet spot moves at most `factor` times as far as the rigid sweet "
-               "spot (Smith 2001 Eq. 7), over the speeds where Eq. 7 is defined and the sweet "
-               "spot lies inside the search window, for every bat.",
-               _check_figure_sweet_spot),
-)}
+# how each claim check (:data:`batcert.specs.kinds.CLAIM_CHECKS`: its name and meaning) tests a
+# comparison: (status, evidence)
+CHECKS: dict[str, Callable[[ComparisonResult, ClaimSpec], tuple[str, str]]] = {
+    "sign-disagreement": _check_sign_disagreement,
+    "consistent-across-conditions": _check_consistent,
+    "advantage": _check_advantage,
+    "lower-than": _check_lower_than,
+    "cop-not-sweet-spot": _check_cop_not_sweet,
+    "cop-offset-differs": _check_offset_differs,
+    "sweet-spot-moves-less-than-rigid": _check_sweet_spot_moves,
+    "opposite-trends": _check_opposite_trends,
+    "figure-sweet-spot-less-than-rigid": _check_figure_sweet_spot,
+}
 
 
 def evaluate_claim(result: ComparisonResult, claim: ClaimSpec) -> ClaimResult:
@@ -342,5 +316,5 @@ def evaluate_claim(result: ComparisonResult, claim: ClaimSpec) -> ClaimResult:
     if missing:
         status, text = "not-testable", f"Protocols not in this comparison: {', '.join(missing)}."
     else:
-        status, text = CLAIM_CHECKS[claim.check].check(result, claim)
+        status, text = CHECKS[claim.check](result, claim)
     return ClaimResult(claim.id, claim.statement, claim.source or "", claim.check, status, text)

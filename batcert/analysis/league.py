@@ -1,8 +1,9 @@
 """League rule evaluation (pure): bat facts and protocol results in, per-rule verdicts out.
 
-Each rule of a league file (:mod:`batcert.specs.league`) has a kind from :data:`RULE_KINDS`, the one
-registry of rule kinds: how the kind reads its ``limit``, which other fields it needs, its unit and
-the function that evaluates it (the league schema takes its kinds from here). Verdicts: ``pass``,
+Each rule of a league file (:mod:`batcert.specs.league`) has a kind of
+:data:`batcert.specs.kinds.RULE_KINDS` (how the kind reads its ``limit``, which other fields it
+needs, its unit; the league schema reads them there), evaluated by its function in
+:data:`EVALUATIONS`. Verdicts: ``pass``,
 ``fail``, ``not-applicable`` (the rule covers other bats, e.g. a BBCOR rule for non-wood bats on a
 wood bat) and ``not-modelled`` (the league file says batcert cannot evaluate the rule yet, or the
 bat file lacks what the rule needs). A not-modelled rule never counts as a pass: a bat passes a
@@ -18,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 from batcert.results.league import BatLeagueResult, LeagueResult, RuleResult
 from batcert.results.run import RunResult
 from batcert.results.serialise import utc_now
+from batcert.specs.kinds import RULE_KINDS
 from batcert.units import INCH, OUNCE
 from batcert.version import __version__
 
@@ -151,37 +153,18 @@ def _performance(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleResu
                       metric=run.metric, note=note)
 
 
-@dataclass(frozen=True)
-class RuleKind:
-    """One kind of league rule: what it checks, what its ``limit`` is (``length``, ``number``,
-    ``metric``: a number, or a speed for an exit-speed protocol; None: no limit; the league
-    schema reads it accordingly), what else it needs, the unit of its value and limit in
-    results, and its evaluation (None: cannot be evaluated)."""
-
-    name: str
-    describe: str
-    limit: str | None
-    evaluate: Callable[[RuleSpec, BatFacts, RunResult | None], RuleResult] | None
-    needs: tuple[str, ...] = ()  # other fields a modelled rule of this kind requires
-    unit: str = ""  # "m", "kg m^2", "in - oz", "" ...
-
-
-RULE_KINDS: dict[str, RuleKind] = {k.name: k for k in (
-    RuleKind("max-length", "overall length at most `limit`", "length", _max_length, unit="m"),
-    RuleKind("max-drop", "drop = length [in] - weight [oz] at most `limit` (a plain number; "
-             "BBCOR's -3 rule is `limit: 3`)", "number", _max_drop, unit="in - oz"),
-    RuleKind("max-barrel-diameter", "largest outer diameter at most `limit`", "length",
-             _max_barrel, unit="m"),
-    RuleKind("min-diameter", "smallest outer diameter (the handle) at least `limit`", "length",
-             _min_diameter, unit="m"),
-    RuleKind("construction", "construction must be `required` (solid or hollow)", None,
-             _construction, ("required",)),
-    RuleKind("material", "material must be one of `allowed` (library names or the classes wood, "
-             "metal, composite)", None, _material, ("allowed",)),
-    RuleKind("performance", "the protocol's aggregated metric at most `limit` + `tolerance`",
-             "metric", _performance, ("protocol",)),
-    RuleKind("other", "any other requirement (only with status: not-modelled)", None, None),
-)}
+# how each kind of rule (:data:`batcert.specs.kinds.RULE_KINDS`: its name, meaning, limit
+# and unit) is evaluated on a bat; None: it cannot be
+EVALUATIONS: dict[str, Callable[[RuleSpec, BatFacts, RunResult | None], RuleResult] | None] = {
+    "max-length": _max_length,
+    "max-drop": _max_drop,
+    "max-barrel-diameter": _max_barrel,
+    "min-diameter": _min_diameter,
+    "construction": _construction,
+    "material": _material,
+    "performance": _performance,
+    "other": None,
+}
 
 
 def applies(rule: RuleSpec, f: BatFacts) -> bool | None:
@@ -239,7 +222,7 @@ def evaluate_rule(rule: RuleSpec, f: BatFacts, run: RunResult | None = None) -> 
         return RuleResult(rule.id, kind=rule.kind, value=None, limit=limit,
                           verdict="not-modelled", note=f"applies to {rule.applies_to} bats, "
                           f"but {f.material_class_basis}", **common)
-    evaluate = RULE_KINDS[rule.kind].evaluate
+    evaluate = EVALUATIONS[rule.kind]
     assert evaluate is not None  # the league schema refuses a modelled rule of kind 'other'
     out = evaluate(rule, f, run)
     out.title, out.applies_to = common["title"], common["applies_to"]

@@ -1,7 +1,7 @@
 """League specification: the rules a bat must meet to be legal in a league, each with its source.
 
 A league file lists rules. Each rule has a ``kind`` from
-:data:`batcert.analysis.league.RULE_KINDS` (the registry: the kind says how its ``limit`` is read,
+:data:`batcert.specs.kinds.RULE_KINDS` (the registry: the kind says how its ``limit`` is read,
 which other fields it needs and how it is evaluated), the bats it ``applies_to`` (all,
 wood or non-wood), a ``source`` and a ``confidence`` (H, M, L, D as in docs/references.md). A rule
 that batcert cannot evaluate yet is written with ``status: not-modelled`` and a ``reason``; the
@@ -15,10 +15,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from batcert.analysis.league import RULE_KINDS
 from batcert.errors import Collector
 from batcert.methods.metrics import METRIC_BOUND
 from batcert.specs.common import Source, spec_from
+from batcert.specs.kinds import RULE_KINDS
 from batcert.specs.schema import (
     Field,
     FieldError,
@@ -41,7 +41,7 @@ MATERIAL_CLASSES = ("wood", "metal", "composite")
 CONFIDENCE = ("H", "M", "L", "D")
 
 
-# how each kind of limit of batcert.analysis.league.RULE_KINDS is read
+# how each kind of limit of batcert.specs.kinds.RULE_KINDS is read
 LIMIT_KINDS: dict[str, Kind] = {
     "length": quantity("length", positive=True),
     "number": number(),
@@ -171,7 +171,7 @@ class RuleSpec:
 
     id: str
     title: str | None
-    kind: str  # a name of batcert.analysis.league.RULE_KINDS
+    kind: str  # a name of batcert.specs.kinds.RULE_KINDS
     limit: Any  # float (SI), or text for a not-modelled rule's unparsed limit, or None
     tolerance: float
     required: str | None

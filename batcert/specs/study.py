@@ -3,7 +3,7 @@
 A study (e.g. ``protocols/studies/smith2001.yaml``) lists protocols by shipped id, by path relative
 to the study file, or inline (a mapping with the protocol fields). It may name default bats (the
 first is the reference of the relative performance P) and the published ``claims`` to test against
-the model's results: each claim names a check from :data:`batcert.analysis.claims.CLAIM_CHECKS` (the
+the model's results: each claim names a check from :data:`batcert.specs.kinds.CLAIM_CHECKS` (the
 registry of checks, evaluated there) and the protocols it concerns. The comparison report states,
 for each claim, whether the model supports it, and with which numbers; nothing is fitted to make it
 so."""
@@ -13,9 +13,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from batcert.analysis.claims import CLAIM_CHECKS
 from batcert.errors import Collector, InputError
 from batcert.specs.common import Source, spec_from
+from batcert.specs.kinds import CLAIM_CHECKS
 from batcert.specs.protocol import (
     PROTOCOL_SCHEMA,
     ProtocolSpec,
@@ -119,7 +119,7 @@ class ClaimSpec:
     id: str
     statement: str
     source: str | None
-    check: str  # a name of batcert.analysis.claims.CLAIM_CHECKS
+    check: str  # a name of batcert.specs.kinds.CLAIM_CHECKS
     protocols: list[str]
     compare_with: list[str] | None
     expected: str  # shown | not-shown

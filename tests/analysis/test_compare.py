@@ -12,12 +12,13 @@ from pathlib import Path
 
 import pytest
 
-from batcert.analysis.claims import CLAIM_CHECKS, evaluate_claim
+from batcert.analysis.claims import CHECKS, evaluate_claim
 from batcert.analysis.compare import compare, relative_performance
 from batcert.errors import InputError
 from batcert.results.compare import ComparisonResult, Spread
 from batcert.results.run import ConditionResult, InputFile, MassProperties, RunResult, Sweep
 from batcert.specs.common import spec_from
+from batcert.specs.kinds import CLAIM_CHECKS
 from batcert.specs.study import CLAIM_SCHEMA, ClaimSpec, load_study
 
 REPO = Path(__file__).resolve().parents[2]
@@ -146,6 +147,10 @@ def _claim(check: str, protocols: list[str], **kw) -> ClaimSpec:
     defaults = {f.name: f.default for f in CLAIM_SCHEMA.fields}  # the study file's defaults
     return spec_from(ClaimSpec, {**defaults, "id": check, "statement": "s", "check": check,
                                  "protocols": protocols, **kw})
+
+
+def test_every_claim_check_has_its_test():
+    assert list(CHECKS) == list(CLAIM_CHECKS)
 
 
 def test_every_claim_check_is_documented_in_the_input_docs():

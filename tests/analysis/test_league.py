@@ -12,12 +12,13 @@ from pathlib import Path
 
 import pytest
 
-from batcert.analysis.league import RULE_KINDS, BatFacts, bat_facts, evaluate_rule, material_class
+from batcert.analysis.league import EVALUATIONS, BatFacts, bat_facts, evaluate_rule, material_class
 from batcert.commands.inputs import load_bats
 from batcert.commands.league import run_league
 from batcert.errors import InputError
 from batcert.results.league import LeagueResult
 from batcert.specs.common import spec_from
+from batcert.specs.kinds import RULE_KINDS
 from batcert.specs.league import RULE_SCHEMA, RuleSpec, load_league
 from batcert.specs.resolve import shipped_names
 from batcert.units import INCH, OUNCE
@@ -51,7 +52,8 @@ def test_every_league_ships_and_loads():
 
 
 def test_every_rule_kind_but_other_can_be_evaluated():
-    assert {k for k, v in RULE_KINDS.items() if v.evaluate is None} == {"other"}
+    assert {k for k, v in EVALUATIONS.items() if v is None} == {"other"}
+    assert list(EVALUATIONS) == list(RULE_KINDS)  # every kind has its evaluation, in order
 
 
 def _rule(**values) -> RuleSpec:

@@ -82,7 +82,7 @@ def test_status_as_the_interpreter_gives_it(monkeypatch, capsys, code, status, s
     def fake_exit(value):
         raise Exited(value)
 
-    monkeypatch.setattr(cli.os, "_exit", fake_exit)
+    monkeypatch.setattr("os._exit", fake_exit)
     monkeypatch.setattr("threading.active_count", lambda: 1)
     monkeypatch.setattr("atexit._run_exitfuncs", lambda: None)  # not pytest's own handlers
     with pytest.raises(Exited) as exited:

@@ -99,23 +99,39 @@ def lab_stem(result: Any) -> str:
     return _stem("lab", result.protocol, Path(result.session_path).stem)
 
 
-# the report kind of each result type, by class name: its stem and its renderers
-# (markdown.<name>_markdown, html.<name>_html); the result modules are not imported to look a
-# result up, which keeps a run's start-up from loading every other kind
-_KINDS: dict[str, tuple[Callable[[Any], str], str]] = {
-    "RunResult": (run_stem, "run"), "ComparisonResult": (comparison_stem, "comparison"),
-    "LeagueResult": (league_stem, "league"), "SweepResult": (sweep_stem, "sweep"),
-    "LabResult": (lab_stem, "lab")}
+def _markdown():
+    from batcert.reports import markdown  # imported on first use: a run's start-up stays light
+    return markdown
+
+
+def _html():
+    from batcert.reports import html
+    return html
+
+
+# the report kind of each result type, by class name (the result modules are not imported to
+# look a result up, which keeps a run's start-up from loading every other kind): its stem and
+# its Markdown and HTML renderers, named outright
+_KINDS: dict[str, ReportKind] = {
+    "RunResult": ReportKind(run_stem, lambda r: _markdown().run_markdown(r),
+                            lambda r: _html().run_html(r)),
+    "ComparisonResult": ReportKind(comparison_stem, lambda r: _markdown().comparison_markdown(r),
+                                   lambda r: _html().comparison_html(r)),
+    "LeagueResult": ReportKind(league_stem, lambda r: _markdown().league_markdown(r),
+                               lambda r: _html().league_html(r)),
+    "SweepResult": ReportKind(sweep_stem, lambda r: _markdown().sweep_markdown(r),
+                              lambda r: _html().sweep_html(r)),
+    "LabResult": ReportKind(lab_stem, lambda r: _markdown().lab_markdown(r),
+                            lambda r: _html().lab_html(r)),
+}
 
 
 def _kind(result: Any) -> ReportKind:
-    """The report kind of a result (renderers imported lazily to keep start-up fast)."""
-    from batcert.reports import html, markdown
+    """The report kind of a result."""
     cls = type(result)
     if not cls.__module__.startswith("batcert.results.") or cls.__name__ not in _KINDS:
         raise KeyError(cls)
-    stem, name = _KINDS[cls.__name__]
-    return ReportKind(stem, getattr(markdown, f"{name}_markdown"), getattr(html, f"{name}_html"))
+    return _KINDS[cls.__name__]
 
 
 def report_stem(result: Any) -> str:

@@ -101,8 +101,12 @@ class Journal:
             raise OutputError(self.path, exc.strerror or str(exc), JOURNAL) from None
 
     def add(self, chunk: int, rows: list[Row]) -> None:
+        """Append a finished chunk, never through a link. A journal removed meanwhile (the same
+        sweep run into the same folder at once finished first) is made anew: this run's
+        journal then lacks its header, so a resume refuses it rather than trust it."""
         try:
-            self._write_to(self.path, os.O_APPEND | os.O_NOFOLLOW, self._line(chunk, rows) + "\n")
+            self._write_to(self.path, os.O_APPEND | os.O_CREAT | os.O_NOFOLLOW,
+                           self._line(chunk, rows) + "\n")
         except OSError as exc:
             raise OutputError(self.path, exc.strerror or str(exc), JOURNAL) from None
 

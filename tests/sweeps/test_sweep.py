@@ -23,7 +23,7 @@ import pytest
 
 from batcert.commands.sweep import plan_sweep, run_sweep
 from batcert.engines import get_engine
-from batcert.errors import UsageProblem
+from batcert.errors import OutputError, UsageProblem
 from batcert.model.build import build_bat
 from batcert.model.mass import mass_properties
 from batcert.physics.rigid import rigid_sweet_spot
@@ -351,3 +351,25 @@ def test_a_warning_names_the_variants_it_came_from():
     for speed in ("pitch_speed=20 m/s", "pitch_speed=45 m/s", "pitch_speed=70 m/s"):
         assert named.count(speed) == 1, (speed, edge)  # each variant's edge, once
     assert all(re.search(r"\((\d+ of 3 variants: |all 3 variants)", w) for w in edge)
+
+
+def test_a_journal_removed_meanwhile_is_made_anew_and_never_written_through_a_link(tmp_path):
+    """The same sweep run into one folder at once: the first to finish removes the shared
+    journal while the other still appends (it failed with 'No such file', exit 4); appending
+    makes the file anew, which a resume then refuses (no header). A link put at the path is
+    never written through."""
+    from batcert.sweeps.execute import Journal, JournalRefused
+    journal = Journal(tmp_path / "j.partial.jsonl", "key", "2026-11-26T00:00:00+00:00")
+    journal.start({})
+    journal.path.unlink()  # the other run finished
+    journal.add(0, [{"index": 0, "error": None}])
+    assert journal.path.is_file()
+    with pytest.raises(JournalRefused):
+        Journal(journal.path, "key", "").load()
+    victim = tmp_path / "bat.yaml"
+    victim.write_text("name: x\n")
+    journal.path.unlink()
+    journal.path.symlink_to(victim)
+    with pytest.raises(OutputError):
+        journal.add(1, [{"index": 1, "error": None}])
+    assert victim.read_text() == "name: x\n"

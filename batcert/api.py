@@ -30,7 +30,7 @@ if TYPE_CHECKING:
 __all__ = ["compare", "design", "league", "load_bat", "load_protocol", "reduce", "run", "sweep",
            "use_cache"]
 
-_cache = {"on": True, "set": False}
+_chosen = [False]  # whether use_cache was called (else the first call turns the cache on)
 
 
 def use_cache(on: bool = True) -> None:
@@ -38,7 +38,7 @@ def use_cache(on: bool = True) -> None:
     (``$BATCERT_CACHE_DIR``, else ``~/.cache/batcert``; :mod:`batcert.cache`). Deleting the
     directory is always safe."""
     from batcert.physics import stores
-    _cache["on"], _cache["set"] = on, True
+    _chosen[0] = True
     if not on:
         for kind in stores.CODE:
             stores.use(kind, None)
@@ -50,8 +50,8 @@ def use_cache(on: bool = True) -> None:
 
 
 def _ready() -> None:
-    if not _cache["set"]:
-        use_cache(_cache["on"])
+    if not _chosen[0]:
+        use_cache()
 
 
 def load_bat(bat: str | Path) -> LoadedBat:

@@ -170,10 +170,7 @@ def _write_journal(directory: Path, journal: Path, state: str, entries: list[_En
                        for e in entries]}
     tmp = journal.with_name(journal.name + ".tmp")
     try:
-        with open(tmp, "wb") as fh:
-            fh.write((json.dumps(doc, indent=1) + "\n").encode())
-            fh.flush()
-            os.fsync(fh.fileno())
+        _write_synced(tmp, (json.dumps(doc, indent=1) + "\n").encode(), os.O_CREAT)
         os.replace(tmp, journal)
     except BaseException:
         _remove(tmp)
@@ -185,15 +182,22 @@ def _stage(directory: Path, name: str, data: bytes, mode: int) -> str:
     """Write ``data`` to a fsynced hidden file next to ``name``; return its name."""
     tmp = Path(_reserve(directory, f".{name}.{TAG}", ".tmp"))
     try:
-        with os.fdopen(os.open(tmp, os.O_WRONLY | os.O_TRUNC), "wb") as fh:
-            fh.write(data)
-            fh.flush()
-            os.fsync(fh.fileno())
+        _write_synced(tmp, data)
         os.chmod(tmp, mode)
     except BaseException:
         _remove(tmp)
         raise
     return tmp.name
+
+
+def _write_synced(path: Path, data: bytes, flags: int = 0) -> None:
+    """``data`` as the whole content of ``path`` (``flags``: os.O_CREAT where it may not exist
+    yet), flushed and fsynced; never through a link."""
+    fd = os.open(path, os.O_WRONLY | os.O_TRUNC | os.O_NOFOLLOW | flags, 0o600)
+    with os.fdopen(fd, "wb") as fh:
+        fh.write(data)
+        fh.flush()
+        os.fsync(fh.fileno())
 
 
 def _backup(directory: Path, name: str) -> str | None:

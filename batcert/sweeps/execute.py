@@ -94,7 +94,8 @@ class Journal:
         tmp = self.path.with_name(f".{self.path.name}.{os.getpid()}.tmp")
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)
-            self._write_to(tmp, os.O_CREAT | os.O_EXCL | os.O_TRUNC, "\n".join(lines) + "\n")
+            # a stale file of a crashed run with this process id is overwritten, a link refused
+            self._write_to(tmp, os.O_CREAT | os.O_TRUNC | os.O_NOFOLLOW, "\n".join(lines) + "\n")
             os.replace(tmp, self.path)
         except OSError as exc:
             tmp.unlink(missing_ok=True)

@@ -373,3 +373,15 @@ def test_a_journal_removed_meanwhile_is_made_anew_and_never_written_through_a_li
     with pytest.raises(OutputError):
         journal.add(1, [{"index": 1, "error": None}])
     assert victim.read_text() == "name: x\n"
+
+
+def test_a_fresh_journal_is_not_blocked_by_a_crashed_runs_staging_file(tmp_path):
+    """A crashed run with the same process id left its staging file: a new journal still
+    starts (with O_EXCL it failed, exit 4)."""
+    import os
+
+    from batcert.sweeps.execute import Journal
+    journal = Journal(tmp_path / "j.partial.jsonl", "key", "2026-11-26T00:00:00+00:00")
+    (tmp_path / f".j.partial.jsonl.{os.getpid()}.tmp").write_text("half a journal")
+    journal.start({})
+    assert Journal(journal.path, "key", "").load() == {}

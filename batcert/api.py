@@ -35,18 +35,16 @@ _chosen = [False]  # whether use_cache was called (else the first call turns the
 
 def use_cache(on: bool = True) -> None:
     """Keep (``on``) or stop keeping costly intermediate results in batcert's cache directory
-    (``$BATCERT_CACHE_DIR``, else ``~/.cache/batcert``; :mod:`batcert.cache`). Deleting the
-    directory is always safe."""
-    from batcert.physics import stores
+    (``$BATCERT_CACHE_DIR``, else ``~/.cache/batcert``; :mod:`batcert.cache`) as well as in
+    the process (the active :class:`batcert.workspace.Workspace`). Deleting the directory is
+    always safe."""
+    from batcert import workspace
     _chosen[0] = True
     if not on:
-        for kind in stores.CODE:
-            stores.use(kind, None)
+        workspace.current().attach(None)
         return
-    from batcert.cache import ArrayStore
-    for kind, folder in (("barrel", "barrels"), ("modes", "modes"), ("ball-fit", "ball-fits"),
-                         ("ball-wall", "ball-walls")):
-        stores.use(kind, ArrayStore(folder, stores.CODE[kind]))
+    from batcert.cache import PHYSICS_CODE, ArrayStore
+    workspace.current().attach(lambda folder: ArrayStore(folder, PHYSICS_CODE))
 
 
 def _ready() -> None:

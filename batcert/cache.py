@@ -30,10 +30,17 @@ def cache_dir(kind: str) -> Path | None:
     return path if os.access(path, os.W_OK | os.X_OK) else None
 
 
+# what a stored physics result depends on besides its inputs: every source file of the physics
+# and of the workspace that keys it, and the releases of numpy and scipy (not a hand-kept list
+# of modules per kind: a change anywhere in the physics retires every stored entry)
+PHYSICS_CODE = ("batcert.physics", "batcert.workspace", "numpy", "scipy")
+
+
 def code_fingerprint(modules) -> str | None:
-    """A checksum of the code of ``modules`` (import names): a module's source, or for a
-    package its ``version.py`` (a library's release) else its ``__init__.py``; None if one
-    cannot be found or read."""
+    """A checksum of the code of ``modules`` (import names): a module's source; for a package
+    of batcert every ``.py`` file in it (sorted by path); for another package its
+    ``version.py`` (a library's release) else its ``__init__.py``; None if one cannot be found
+    or read."""
     import hashlib
     import importlib.util
 
@@ -46,10 +53,16 @@ def code_fingerprint(modules) -> str | None:
         if spec is None or spec.origin is None:
             return None
         origin = Path(spec.origin)
-        if spec.submodule_search_locations is not None and origin.with_name("version.py").is_file():
-            origin = origin.with_name("version.py")
+        files = [origin]
+        if spec.submodule_search_locations is not None:
+            if name.split(".")[0] == "batcert":
+                files = sorted(origin.parent.rglob("*.py"))
+            elif origin.with_name("version.py").is_file():
+                files = [origin.with_name("version.py")]
         try:
-            h.update(name.encode() + b"\0" + origin.read_bytes())
+            for f in files:
+                where = f.relative_to(origin.parent).as_posix()
+                h.update(name.encode() + b"\0" + where.encode() + b"\0" + f.read_bytes())
         except OSError:
             return None
     return h.hexdigest()

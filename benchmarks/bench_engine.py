@@ -34,7 +34,7 @@ from test_flexible import BALL, BARREL_D, hollow_bat, reference_impact  # noqa: 
 
 import batcert.engines.flexible as flexible_module  # noqa: E402
 import batcert.physics.barrel as barrel_module  # noqa: E402
-import batcert.physics.march as march_module  # noqa: E402
+from batcert import workspace  # noqa: E402
 from batcert.commands.inputs import load_bat_any, load_protocol_any  # noqa: E402
 from batcert.engines import ImpactBatch  # noqa: E402
 from batcert.engines.flexible import FlexibleEngine  # noqa: E402
@@ -101,10 +101,9 @@ def proposed_batch(z):
 
 def clear_engine_caches() -> None:
     """The caches a fresh process starts without (the bats' modes and barrels are kept)."""
-    march_module._EXP_CACHE.clear()
-    flexible_module._BEAM_CACHE.clear()
-    barrel_module._PATCH_CACHE.clear()
-    barrel_module._factors_of.cache_clear()
+    ws = workspace.current()
+    for kind in ("step-exponentials", "beam-response", "patch-flexibility", "patch-factors"):
+        ws.clear(kind)
 
 
 def sweeps(engine: FlexibleEngine) -> None:
@@ -136,7 +135,8 @@ def hollow_against_solid(engine: FlexibleEngine) -> None:
                            lambda: same_step.solve(hollow, BALL, PIVOT, batch))
     report("hollow_over_solid_same_step", f"  the barrel's own cost (both at the hollow step): "
            f"hollow / solid = {ratio:.2f}  [target <= 1.5]", ratio)
-    barrel_module.clear_barrel_cache()
+    workspace.current().clear("barrel")
+    workspace.current().clear("barrel-scaled")
     t0 = time.perf_counter()
     barrel_module.cached_barrel_modes(hollow)
     report("barrel_setup_ms", "  barrel shell (modes, static flexibility), once per bat: "

@@ -21,8 +21,9 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 from r161 import r161_bat, solid_bat  # noqa: E402
 
+from batcert import workspace  # noqa: E402
 from batcert.physics.batmodel import Material  # noqa: E402
-from batcert.physics.modes import cached_modes, clear_mode_cache  # noqa: E402
+from batcert.physics.modes import cached_modes  # noqa: E402
 from batcert.physics.residual import residual_compliance  # noqa: E402
 
 PIVOT = 0.1524  # [m]
@@ -66,11 +67,11 @@ def main() -> None:
                 def solve(bat=bat, support=support, refine=refine):
                     return cached_modes(bat, support, PIVOT, N_MODES, refine)
 
-                clear_mode_cache()
+                workspace.current().clear("modes")
                 first = ms(solve)
                 cold = []
                 for _ in range(REPEAT):
-                    clear_mode_cache()
+                    workspace.current().clear("modes")
                     cold.append(ms(solve))
                 hit = [ms(solve) for _ in range(REPEAT)]
                 modes = cached_modes(bat, support, PIVOT, N_MODES, refine)

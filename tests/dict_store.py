@@ -1,5 +1,5 @@
-"""Test helper: an in-memory store for batcert.physics.stores (what the command line keeps in
-its cache directory), counting its loads and saves."""
+"""Test helper: an in-memory disk store for a workspace (what the command line keeps in its
+cache directory, batcert.cache.ArrayStore), counting its loads and saves."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
-from batcert.physics import stores
+from batcert import workspace
 
 
 class DictStore:
@@ -24,15 +24,17 @@ class DictStore:
 
 
 @contextmanager
-def installed(kind: str, clear):
-    """A fresh :class:`DictStore` installed for ``kind``, the in-process cache emptied
-    (``clear``) before and after, the previous store put back."""
+def installed(kind: str):
+    """A fresh workspace, active inside the block, whose disk store for ``kind`` is a fresh
+    :class:`DictStore` (the other kinds' stores are thrown away)."""
     s = DictStore()
-    previous = stores.get(kind)
-    stores.use(kind, s)
-    clear()
-    try:
+    ws = workspace.Workspace()
+    folder = workspace.KINDS[kind].folder
+    ws.attach(lambda f: s if f == folder else DictStore())
+    with workspace.active(ws):
         yield s
-    finally:
-        stores.use(kind, previous)
-        clear()
+
+
+def forget(kind: str) -> None:
+    """Empty the active workspace's in-process entries of ``kind`` (its disk store stays)."""
+    workspace.current().clear(kind)

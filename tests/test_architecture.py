@@ -19,11 +19,13 @@ PACKAGE = Path(str(resources.files(batcert)))
 # layer -> layers (package folders or top-level modules) it may import, besides itself
 ALLOWED = {
     "units": set(), "errors": set(), "conventions": set(), "version": set(), "cache": set(),
+    # the one owner of kept results (speed machinery beneath the physics, imports nothing)
+    "workspace": set(),
     # the package's top: its version, and the library's functions (imported on first use)
     "__init__": {"version", "api"},
-    "physics": set(),
+    "physics": {"workspace"},
     "methods": {"physics"},
-    "engines": {"physics"},
+    "engines": {"physics", "workspace"},
     "results": set(),
     # the spec schemas take their names from the registries of methods/ (metrics, aggregates,
     # impact rules) and from specs/kinds.py (claim checks, league rule kinds)
@@ -43,7 +45,7 @@ ALLOWED = {
                  "results", "runner", "analysis", "sweeps", "lab", "uncertainty", "version"},
     "console": {"units", "reports", "results", "version"},
     # the library: the commands' functions and the cache it keeps, typed results
-    "api": {"commands", "physics", "cache", "results"},
+    "api": {"commands", "physics", "cache", "results", "workspace"},
     "cli": {"api", "version", "__init__", "console", "errors", "commands", "engines", "specs", "units", "reports",
             "runner", "cache", "physics"},
     "__main__": {"cli"},
@@ -69,7 +71,10 @@ def import_graph() -> dict[str, set[str]]:
             if isinstance(node, ast.Import):
                 targets = [a.name for a in node.names]
             elif isinstance(node, ast.ImportFrom) and node.module:
-                targets = [node.module] + [f"{node.module}.{a.name}" for a in node.names]
+                # "from batcert import workspace" imports the module workspace; "from
+                # batcert.x import name" imports batcert.x
+                targets = [f"{node.module}.{a.name}" if f"{node.module}.{a.name}" in modules
+                           else node.module for a in node.names]
             else:
                 continue
             deps |= {t for t in targets if t in modules and t != name}

@@ -54,8 +54,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from batcert import workspace
 from batcert.engines.base import ImpactBatch, ImpactOutcome
-from batcert.physics import rigid, stores
+from batcert.physics import rigid
 from batcert.physics.ball import BallModel
 from batcert.physics.balls import footprint
 from batcert.physics.balls.hysteresis import PowerLawHysteresis, compression_cor
@@ -88,7 +89,6 @@ BALL_LOSS = ("compression", "relative-speed")
 CONTACT_SURFACES = ("cylinder", "flat")
 
 _PIVOT_CLEARANCE = 1e-3  # an impact closer than this to the pivot is refused [m]
-_BEAM_CACHE: stores.Memo[tuple, tuple] = stores.Memo(256)  # (modes, result): FlexibleEngine._beam_at
 # impacts solved together at most (FlexibleEngine.solve_many): memory bounded whatever the
 # batch, each pass's arrays in cache (measured, bench_engine.py)
 _PASS_ROWS = 4096
@@ -341,23 +341,12 @@ class FlexibleEngine:
     def _beam_at(self, bat: BatModel, modes: Modes, points: np.ndarray, weights: np.ndarray
                  ) -> tuple[np.ndarray, np.ndarray]:
         """The modes' shapes averaged over each patch, (p, modes), and the truncated modes'
-        residual compliance there, (p,) (zero without ``residual``); memoised on the modes and
-        the patches, which recur (a barrel's variants, the same points in several runs); a
-        batch of more than ``stores.MEMO_ROWS`` impacts is neither looked up nor kept."""
-        return _BEAM_CACHE.batch(modes, (self.residual, points.shape), (points, weights),
-                                 lambda: self._beam_computed(bat, modes, points, weights))
-
-    def _beam_computed(self, bat: BatModel, modes: Modes, points: np.ndarray,
-                       weights: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`_beam_at` computed."""
-        from batcert.physics.residual import patch_reader, residual_compliance
-
-        reader = patch_reader(modes.z, points, weights)  # (p, nodes), as Modes.at reads
-        phi = reader @ modes.shapes.T
-        residual = np.zeros(points.shape[0])
-        if self.residual:
-            residual = residual_compliance(bat, modes, points, weights, reader=reader)
-        return phi, residual
+        residual compliance there, (p,) (zero without ``residual``); kept by the active
+        workspace (kind ``beam-response``): the patches recur (a barrel's variants, the same
+        points in several runs); a batch of more than ``workspace.BATCH_ROWS`` impacts is
+        neither looked up nor kept."""
+        return workspace.current().call("beam-response", _beam_response, bat, modes, points,
+                                        weights, bool(self.residual), rows=points.shape[0])
 
     def _shell(self, bat: BatModel, patch: Patch, extras: dict):
         """A hollow bat's wall under each impact's footprint (module notes) and, on the grid
@@ -571,6 +560,19 @@ class FlexibleEngine:
 # tabulated (linear between them, held beyond); _REFERENCE is u_rep itself
 _GRID = np.linspace(0.0, 2.0, 41)
 _REFERENCE = 20
+
+
+def _beam_response(bat: BatModel, modes: Modes, points: np.ndarray, weights: np.ndarray,
+                   residual: bool) -> tuple[np.ndarray, np.ndarray]:
+    """:meth:`FlexibleEngine._beam_at` computed."""
+    from batcert.physics.residual import patch_reader, residual_compliance
+
+    reader = patch_reader(modes.z, points, weights)  # (p, nodes), as Modes.at reads
+    phi = reader @ modes.shapes.T
+    compliance = np.zeros(points.shape[0])
+    if residual:
+        compliance = residual_compliance(bat, modes, points, weights, reader=reader)
+    return phi, compliance
 
 
 def _coupling(bpatch, table: dict, columns: int, n_bending: int, beam_residual, patch: Patch

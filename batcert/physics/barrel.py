@@ -28,14 +28,13 @@ stiffness (and mass) through ``BatModel.barrel_stiffness_scale`` / ``barrel_mass
 
 from __future__ import annotations
 
-import hashlib
 import math
 from dataclasses import dataclass, replace
-from functools import cached_property, lru_cache
+from functools import cached_property
 
 import numpy as np
 
-from batcert.physics import stores
+from batcert import workspace
 from batcert.physics.balls.footprint import circumferential_factors
 from batcert.physics.banded import inverse_band, lower_band
 from batcert.physics.batmodel import BatModel
@@ -224,6 +223,12 @@ def compute_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
     shell = barrel_shell(bat)
     if shell is None:
         return None
+    return shell_modes(shell, max_frequency, dynamic_orders, static_orders)
+
+
+def shell_modes(shell: ShellOfRevolution, max_frequency: float, dynamic_orders: int,
+                static_orders: int) -> BarrelModes:
+    """:func:`compute_barrel_modes` of a wall given as its shell."""
     assembler = Assembler(shell)
     n_nodes = shell.z.size
     omega, orders, shapes = [], [], []
@@ -239,22 +244,32 @@ def compute_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
                        np.concatenate(shapes, axis=1), float(max_frequency))
 
 
-_CACHE: stores.Memo[tuple, BarrelModes | None] = stores.Memo(8)  # nominal walls
-# each bat's own (scaled) wall, by identity: the engine asks for it once per batch
-_LAST: stores.Memo[tuple, tuple[BatModel, BarrelModes | None]] = stores.Memo(16)
 # The nominal wall's modes are computed at least to this [Hz]: 1.25 x the 12 kHz of the bat's
 # mode summary (model.diagnostics), which also covers the engine's 10 kHz for barrels down to
 # x0.44 of their nominal stiffness (the plausible range's x0.8 among them) without recomputing.
 NOMINAL_CUT = 15000.0
 
 
+def wall_of(bat: BatModel) -> BatModel:
+    """``bat`` with what its barrel shell (:func:`barrel_shell`) does not read set to neutral
+    values: its name, its beam's stiffness and rotary inertia, its point masses and the
+    material's name, shear modulus and loss factor. Bats that differ only there share their
+    wall; any other field, a new one included, is part of the key of
+    :func:`cached_barrel_modes`."""
+    none = np.zeros(0)
+    m = bat.material
+    return replace(bat, name="", rotary_inertia=none, bending_stiffness=none,
+                   shear_stiffness=none, point_masses=(), extras={},
+                   material=replace(m, name="", shear_modulus=0.0, loss_factor=0.0))
+
+
 def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
                         dynamic_orders: int = DYNAMIC_ORDERS,
                         static_orders: int = STATIC_ORDERS) -> BarrelModes | None:
-    """:func:`compute_barrel_modes`, memoised on what the wall depends on (LRU, 8 entries of
-    about 4 MB each for a 34 in bat: the static flexibility band of 24 orders), and kept in the
-    store of :mod:`batcert.physics.stores` where a front end installed one (the command line's
-    cache directory), which returns the computed arrays exactly.
+    """:func:`compute_barrel_modes` of :func:`wall_of` ``(bat)``, kept by the active workspace
+    (:mod:`batcert.workspace`; kind ``barrel-scaled``, and the nominal wall it is scaled from,
+    kind ``barrel``, also in the disk store where one is attached, which returns the computed
+    arrays exactly; about 4 MB for a 34 in bat: the static flexibility band of 24 orders).
 
     The wall is computed once at its nominal stiffness and relative density; a calibrated or
     varied barrel (``barrel_stiffness_scale``, ``barrel_mass_scale``) or a uniformly scaled
@@ -263,53 +278,50 @@ def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
     """
     if bat.construction != "hollow":
         return None
-    key = (id(bat), float(max_frequency), int(dynamic_orders), int(static_orders))
-    hit = _LAST.look(key)
-    if hit is not None and hit[0] is bat:
-        return hit[1]
-    modes = _barrel_modes(bat, max_frequency, dynamic_orders, static_orders)
-    _LAST.keep(key, (bat, modes))
-    return modes
+    return workspace.current().call("barrel-scaled", _scaled_wall, wall_of(bat),
+                                    float(max_frequency), int(dynamic_orders), int(static_orders))
 
 
-def _barrel_modes(bat: BatModel, max_frequency: float, dynamic_orders: int,
-                  static_orders: int) -> BarrelModes | None:
+def _scaled_wall(bat: BatModel, max_frequency: float, dynamic_orders: int,
+                 static_orders: int) -> BarrelModes | None:
     # a bat whose density is uniformly scaled (reconciled to another measured mass) has the
-    # same wall with another mass: the key and the computation use the density relative to its
-    # largest value (to 12 digits) times that value rounded to a 1/16 step of its base-2
-    # logarithm (so the computed wall is within 2.2 % of the bat's), and the rest of the scale
-    # joins barrel_mass_scale
+    # same wall with another mass: the nominal wall has the density relative to its largest
+    # value (to 12 digits) times that value rounded to a 1/16 step of its base-2 logarithm (so
+    # the computed wall is within 2.2 % of the bat's), and the rest of the scale joins
+    # barrel_mass_scale
     density = np.asarray(bat.linear_density, dtype=float)
     top = float(density.max())
     rounded = 2.0 ** (round(math.log2(top) * 16) / 16)
     relative = np.round(density / top, 12) * rounded
     s_k, s_m = bat.barrel_stiffness_scale, bat.barrel_mass_scale * top / rounded
     needed = float(max_frequency) / np.sqrt(s_k / s_m)  # nominal modes up to this [Hz]
-    h = hashlib.sha256()
-    for a in (bat.z_edges, bat.outer_diameter, bat.inner_diameter, relative):
-        h.update(np.ascontiguousarray(a, dtype=float).tobytes())
-    m = bat.material  # not its name or loss factor: the modes do not depend on them
     # the nominal modes are computed to a cut that depends only on what this request needs
     # (NOMINAL_CUT, doubled as often as needed), and the cut is part of the key: the numbers
     # of a run never depend on what the process computed before
     level = max(0, math.ceil(math.log2(needed / NOMINAL_CUT) - 1e-12))
     cut = NOMINAL_CUT * 2.0 ** level
-    key = (h.hexdigest(), m.density, m.youngs_modulus, m.poisson_ratio, bat.barrel_end,
-           int(dynamic_orders), int(static_orders), level)
-    base = _CACHE.look(key)
-    if base is None:
-        def compute() -> BarrelModes | None:
-            nominal = replace(bat, linear_density=relative, barrel_stiffness_scale=1.0,
-                              barrel_mass_scale=1.0)
-            return compute_barrel_modes(nominal, cut, dynamic_orders, static_orders)
-
-        base = _CACHE.keep(key, stores.kept("barrel", key, compute, _to_arrays,
-                                            lambda a: _from_arrays(a, cut)))
-    if base is None:
+    nominal = barrel_shell(replace(bat, linear_density=relative, barrel_stiffness_scale=1.0,
+                                   barrel_mass_scale=1.0))
+    if nominal is None:
         return None
+    base = workspace.current().call("barrel", _nominal_wall, nominal, cut, int(dynamic_orders),
+                                    int(static_orders), save=_to_arrays,
+                                    load=lambda a: _from_arrays(a, cut))
     shell = barrel_shell(bat)
     assert shell is not None
     return base.scaled(shell, s_k, s_m, float(max_frequency))
+
+
+def _nominal_wall(shell: ShellOfRevolution, cut: float, dynamic_orders: int,
+                  static_orders: int) -> BarrelModes:
+    return _read_only(shell_modes(shell, cut, dynamic_orders, static_orders))
+
+
+def _read_only(modes: BarrelModes) -> BarrelModes:
+    # shared between callers; a read-only array's content hash is computed once
+    for a in (modes.green, modes.omega, modes.mode_orders, modes.shapes):
+        a.flags.writeable = False
+    return modes
 
 
 def _to_arrays(modes: BarrelModes) -> dict[str, np.ndarray]:
@@ -343,13 +355,7 @@ def _from_arrays(a: dict | None, cut: float) -> BarrelModes | None:
               and modes.max_frequency == cut)
     except (TypeError, KeyError, ValueError, IndexError):
         return None
-    return modes if ok else None
-
-
-def clear_barrel_cache() -> None:
-    """Empty the in-process barrel cache."""
-    _CACHE.clear()
-    _LAST.clear()
+    return _read_only(modes) if ok else None
 
 
 @dataclass(frozen=True)
@@ -494,22 +500,17 @@ def barrel_response(barrel: BarrelModes, points: np.ndarray, weights: np.ndarray
 
 def _factors(orders: tuple[int, ...], angles: np.ndarray) -> np.ndarray:
     """:func:`~batcert.physics.balls.footprint.circumferential_factor` of every order at every
-    angle, (orders, angles), read-only; memoised (at most ``stores.MEMO_ROWS`` angles): a
-    barrel's variants and the runner's repeated points ask for the same patch sizes."""
-    key = angles.astype(float).tobytes()
-    if angles.size > stores.MEMO_ROWS:
-        return _factors_of.__wrapped__(orders, key)  # computed alike, not kept
-    return _factors_of(orders, key)
+    angle, (orders, angles), read-only; kept by the active workspace (kind ``patch-factors``):
+    a barrel's variants and the runner's repeated points ask for the same patch sizes."""
+    angles = np.ascontiguousarray(angles, dtype=float).ravel()
+    return workspace.current().call("patch-factors", _factors_of, tuple(orders), angles,
+                                    rows=angles.size)
 
 
-@lru_cache(maxsize=64)
-def _factors_of(orders: tuple[int, ...], angles: bytes) -> np.ndarray:
-    c = circumferential_factors(orders, np.frombuffer(angles))
+def _factors_of(orders: tuple[int, ...], angles: np.ndarray) -> np.ndarray:
+    c = circumferential_factors(orders, angles)
     c.setflags(write=False)
     return c
-
-
-_PATCH_CACHE: stores.Memo[tuple, tuple[np.ndarray, np.ndarray]] = stores.Memo(64)
 
 
 def _patch_flexibility(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
@@ -517,12 +518,12 @@ def _patch_flexibility(green: np.ndarray, loads: PatchLoads) -> np.ndarray:
 
     A patch loads only the few nodes it covers, a contiguous band of the W space, so each patch
     reads a band of every order's flexibility; patches with the same band are done together.
-    Memoised on the wall and the loads (LRU, batches of at most ``stores.MEMO_ROWS``): a
-    scaled wall (calibration, the uncertainty range) shares its nominal flexibility, and the
-    runner asks again for the same points.
+    Kept by the active workspace (kind ``patch-flexibility``, batches of at most
+    ``workspace.BATCH_ROWS``): a scaled wall shares its nominal flexibility, and the runner
+    asks again for the same points.
     """
-    return _PATCH_CACHE.batch(green, (loads.f.shape,), (loads.start, loads.f),
-                              lambda: _patch_flexibility_of(green, loads))
+    return workspace.current().call("patch-flexibility", _patch_flexibility_of, green, loads,
+                                    rows=loads.f.shape[0])
 
 
 def _patch_flexibility_of(green: np.ndarray, loads: PatchLoads) -> np.ndarray:

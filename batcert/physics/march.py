@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from batcert.physics import stores
+from batcert import workspace
 from batcert.physics.coupling import Coupling, extrapolate
 from batcert.physics.etd import phi_functions
 from batcert.physics.linear_system import LinearSystem
@@ -129,21 +129,18 @@ class _State:
                    dj=zeros.copy())
 
 
-_EXP_CACHE: stores.Memo[tuple, tuple[np.ndarray, ...]] = stores.Memo(128)
-
-
 def _exponentials(lam: np.ndarray, h: float) -> tuple[np.ndarray, ...]:
     """``e^(lam h)``, ``e^(lam h / 2)``, ``phi_1..3(lam h)`` and ``h/2 phi_1(lam h / 2)`` of
-    one block's eigenvalues; memoised (a bat's modes recur in every batch of a run)."""
-    key = (lam.shape, float(h), lam.tobytes())
-    hit = _EXP_CACHE.look(key)
-    if hit is not None:
-        return hit
-    vals = (np.exp(lam * h), np.exp(lam * h / 2), *phi_functions(lam * h),
+    one block's eigenvalues; a single row (a block's shared row) is kept by the active
+    workspace (kind ``step-exponentials``: a bat's modes recur in every batch of a run)."""
+    if lam.shape[0] == 1:
+        return workspace.current().call("step-exponentials", _exponentials_of, lam, float(h))
+    return _exponentials_of(lam, h)
+
+
+def _exponentials_of(lam: np.ndarray, h: float) -> tuple[np.ndarray, ...]:
+    return (np.exp(lam * h), np.exp(lam * h / 2), *phi_functions(lam * h),
             0.5 * h * phi_functions(lam * h / 2)[0])
-    if lam.shape[0] == 1:  # only single rows (a block's shared row) are worth keeping
-        _EXP_CACHE.keep(key, vals)
-    return vals
 
 
 def _coefficients(system: LinearSystem, h: float) -> _Coefficients:

@@ -3,13 +3,12 @@ beam of :mod:`batcert.physics.beam`, cached in-process, and their nodes."""
 
 from __future__ import annotations
 
-import hashlib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from batcert.physics import stores
-from batcert.physics.batmodel import BatModel
+from batcert import workspace
+from batcert.physics.batmodel import BatModel, Material
 from batcert.physics.beam import N_RIGID, assemble, check_support, free_dofs, mesh_nodes, rigid_modes
 
 
@@ -162,37 +161,41 @@ def mode_nodes(modes: Modes, j: int) -> np.ndarray:
     return np.sort(np.concatenate([exact, crossing]))
 
 
-_CACHE: stores.Memo[tuple, Modes] = stores.Memo(64)
+def beam_of(bat: BatModel) -> BatModel:
+    """``bat`` with what its beam modes do not read set to neutral values: its name, its
+    material (the sections already hold it) and its barrel shell's scales and end. Bats that
+    differ only there share their modes; any other field, a new one included, is part of the
+    key of :func:`cached_modes`."""
+    return replace(bat, name="", material=_NO_MATERIAL, barrel_stiffness_scale=1.0,
+                   barrel_mass_scale=1.0, barrel_end="closed")
 
 
-def model_hash(bat: BatModel) -> str:
-    """SHA-256 of the arrays that define the beam (edges, section properties, point masses)."""
-    h = hashlib.sha256()
-    for a in (bat.z_edges, bat.linear_density, bat.rotary_inertia, bat.bending_stiffness,
-              bat.shear_stiffness, np.asarray(bat.point_masses, dtype=float).reshape(-1)):
-        h.update(np.ascontiguousarray(a, dtype=float).tobytes())
-        h.update(b"|")
-    return h.hexdigest()
+_NO_MATERIAL = Material("", 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
 def cached_modes(bat: BatModel, support: str, pivot: float, n_modes: int = 24,
                  refine: int = 1) -> Modes:
-    """:func:`compute_modes` memoised in-process (LRU, 64 entries) on the model's content hash,
-    and kept in the store of :mod:`batcert.physics.stores` where a front end installed one
-    (the command line's cache directory), which returns the computed arrays exactly.
+    """:func:`compute_modes` of :func:`beam_of` ``(bat)``, kept by the active workspace
+    (:mod:`batcert.workspace`, kind ``modes``: in the process and, where one is attached, in
+    its disk store, which returns the computed arrays exactly).
 
     The returned arrays are read-only because they are shared between callers.
     """
-    key = (model_hash(bat), support, float(pivot), int(n_modes), int(refine))
-    hit = _CACHE.look(key)
-    if hit is not None:
-        return hit
-    modes = stores.kept("modes", key, lambda: compute_modes(bat, support, pivot, n_modes, refine),
-                        _to_arrays, lambda a: _from_arrays(a, support, float(pivot)))
-    assert modes is not None
+    args = (beam_of(bat), str(support), float(pivot), int(n_modes), int(refine))
+    return workspace.current().call(
+        "modes", _read_only_modes, *args, save=_to_arrays,
+        load=lambda a: _from_arrays(a, args[1], args[2]))
+
+
+def _read_only_modes(bat: BatModel, support: str, pivot: float, n_modes: int,
+                     refine: int) -> Modes:
+    return _read_only(compute_modes(bat, support, pivot, n_modes, refine))
+
+
+def _read_only(modes: Modes) -> Modes:
     for a in (modes.z, modes.omega, modes.shapes, modes.rotations):
         a.flags.writeable = False
-    return _CACHE.keep(key, modes)
+    return modes
 
 
 def _to_arrays(modes: Modes) -> dict[str, np.ndarray]:
@@ -212,9 +215,4 @@ def _from_arrays(a: dict | None, support: str, pivot: float) -> Modes | None:
               and 0 < modes.n_rigid <= modes.omega.size)
     except (KeyError, TypeError, ValueError):
         return None
-    return modes if ok else None
-
-
-def clear_mode_cache() -> None:
-    """Empty the in-process mode cache."""
-    _CACHE.clear()
+    return _read_only(modes) if ok else None

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from batcert.physics import stores
+from batcert import workspace
 from batcert.physics.batmodel import BatModel
 from batcert.physics.beam import assemble, check_support, free_dofs, rigid_modes
 from batcert.physics.modes import Modes
@@ -94,17 +94,16 @@ class _Flexibility:
     nodal: np.ndarray  # elastic flexibility between the nodes' transverse displacements, (N, N)
 
 
-_FLEX_CACHE: stores.Memo[int, tuple[Modes, _Flexibility]] = stores.Memo(32)  # by id(modes)
-
-
 def _flexibility(bat: BatModel, modes: Modes) -> _Flexibility:
-    """The factorised static problem behind :func:`residual_compliance`, cached per modes
-    (or the flexibility that came with the modes, :mod:`batcert.physics.ritz`)."""
+    """The factorised static problem behind :func:`residual_compliance`, kept by the active
+    workspace (kind ``residual-flexibility``; or the flexibility that came with the modes,
+    :mod:`batcert.physics.ritz`)."""
     if modes.flexibility is not None:
         return _Flexibility(modes.z, modes.flexibility)
-    hit = _FLEX_CACHE.look(id(modes))
-    if hit is not None and hit[0] is modes:
-        return hit[1]
+    return workspace.current().call("residual-flexibility", _static_flexibility, bat, modes)
+
+
+def _static_flexibility(bat: BatModel, modes: Modes) -> _Flexibility:
     fe = assemble(bat, modes.z)
     keep = free_dofs(fe, modes.support, modes.pivot)
     rigid = rigid_modes(fe, modes.support, modes.pivot)[keep]
@@ -128,9 +127,7 @@ def _flexibility(bat: BatModel, modes: Modes) -> _Flexibility:
     nodal = np.zeros((fe.z.size, fe.z.size))
     held = w_rows < 0
     nodal[np.ix_(~held, ~held)] = x[np.ix_(w_rows[~held], w_rows[~held])]
-    flex = _Flexibility(fe.z, 0.5 * (nodal + nodal.T))
-    _FLEX_CACHE.keep(id(modes), (modes, flex))
-    return flex
+    return _Flexibility(fe.z, 0.5 * (nodal + nodal.T))
 
 
 def nodal_flexibility(bat: BatModel, modes: Modes) -> np.ndarray:

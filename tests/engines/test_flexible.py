@@ -451,23 +451,21 @@ def test_the_memos_keep_small_batches_only(monkeypatch):
     # the patch readings, barrel flexibilities and circumferential factors (patch sizes) of a
     # batch of more than MEMO_ROWS impacts (a pass of a large random batch, which does not
     # recur) are not kept; a smaller batch's are, and a second solve of it reads them
-    import batcert.engines.flexible as flexible_module
-    from batcert.physics import stores
+    from batcert import workspace
 
-    monkeypatch.setattr(stores, "MEMO_ROWS", 3)
-    monkeypatch.setattr(flexible_module, "_BEAM_CACHE", stores.Memo(256))
-    monkeypatch.setattr(barrel, "_PATCH_CACHE", stores.Memo(64))
+    monkeypatch.setattr(workspace, "BATCH_ROWS", 3)
+    ws = workspace.Workspace()
+    monkeypatch.setattr(workspace, "_DEFAULT", ws)
     bat, engine = hollow_bat(2.5e-3), FlexibleEngine()
-    barrel._factors_of.cache_clear()
     large = engine.solve(bat, BALL, PIVOT, ImpactBatch(np.linspace(0.45, 0.6, 4),
                                                        np.linspace(-35.0, -45.0, 4), 50.0))
-    assert not flexible_module._BEAM_CACHE and not barrel._PATCH_CACHE
+    assert ws.count("beam-response") == ws.count("patch-flexibility") == 0
     # only the coupling grid's first point is kept: no compression, a point footprint, one
     # angle (0) for every impact
-    assert barrel._factors_of.cache_info().currsize <= 1
+    assert ws.count("patch-factors") <= 1
     small = ImpactBatch(np.linspace(0.45, 0.6, 3), -40.0, 50.0)
     first = engine.solve(bat, BALL, PIVOT, small)
-    assert len(flexible_module._BEAM_CACHE) == 1 and len(barrel._PATCH_CACHE) == 1
+    assert ws.count("beam-response") == ws.count("patch-flexibility") == 1
     np.testing.assert_array_equal(engine.solve(bat, BALL, PIVOT, small).exit_speed,
                                   first.exit_speed)
     assert np.all(np.isfinite(large.exit_speed))

@@ -2,23 +2,19 @@
 
 from __future__ import annotations
 
-from collections import OrderedDict
-
 import pytest
 
-from batcert.physics import barrel
+from batcert import workspace
 
 
 @pytest.fixture(scope="module")
 def own_barrel_cache():
-    """The module's walls in a cache of their own, the process's put back afterwards."""
-    saved = OrderedDict(barrel._CACHE)
-    barrel.clear_barrel_cache()
-    yield
-    barrel._CACHE.clear()
-    barrel._CACHE.update(saved)
+    """The module's walls in a workspace of their own, the process's untouched."""
+    with workspace.active(workspace.Workspace()) as ws:
+        yield ws
 
 
 @pytest.fixture
 def empty_barrel_cache(own_barrel_cache):
-    barrel.clear_barrel_cache()
+    own_barrel_cache.clear()
+    return own_barrel_cache

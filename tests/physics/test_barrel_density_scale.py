@@ -103,27 +103,27 @@ def test_a_scaled_density_reuses_the_nominal_wall(models, empty_barrel_cache, na
     # computed once more, and then reused in turn.
     model = models[name]
     barrel.cached_barrel_modes(model)
-    assert len(barrel._CACHE) == 1
-    base = next(iter(barrel._CACHE.values()))
+    assert empty_barrel_cache.count("barrel") == 1
+    base = empty_barrel_cache.entries("barrel")[0]
     for factor, mass_scale in [(1.003, 1.0), (0.999, 1.0), (1.003, 1.1)]:
         drawn = scaled(model, factor, mass_scale)
         assert level(drawn) == level(model)  # the premise: the same step
         barrel.cached_barrel_modes(drawn)
-        assert len(barrel._CACHE) == 1, factor
-        assert next(iter(barrel._CACHE.values())) is base
+        assert empty_barrel_cache.count("barrel") == 1, factor
+        assert empty_barrel_cache.entries("barrel")[0] is base
     # 0.97: a step boundary lies between (aluminium-34's largest density, 1.525 kg/m, sits at
     # 9.74 sixteenths of an octave, x 0.97 at 9.04; the alloy's at 11.06 and 10.36), so one
     # new wall
     across = scaled(model, 0.97)
     assert level(across) != level(model)
     barrel.cached_barrel_modes(across)
-    assert len(barrel._CACHE) == 2
+    assert empty_barrel_cache.count("barrel") == 2
     barrel.cached_barrel_modes(scaled(model, 0.975))  # the same step as 0.97
     barrel.cached_barrel_modes(across)
-    assert len(barrel._CACHE) == 2
+    assert empty_barrel_cache.count("barrel") == 2
 
 
 def test_a_solid_bat_has_no_barrel(empty_barrel_cache):
     ash = load_bat_any("ash-34").built.model
     assert barrel.cached_barrel_modes(scaled(ash, 1.003)) is None
-    assert len(barrel._CACHE) == 0
+    assert empty_barrel_cache.count("barrel") == 0

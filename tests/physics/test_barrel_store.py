@@ -1,4 +1,4 @@
-"""A hollow bat's wall kept between processes (batcert.physics.stores, batcert.cache): a
+"""A hollow bat's wall kept between processes (batcert.workspace, batcert.cache): a
 stored wall is the computed one exactly, a stored entry that does not fit is recomputed, and
 the command line's second run reads the wall instead of computing it. Also the pure-numpy
 Bessel function the barrel's response uses instead of scipy's."""
@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from batcert import workspace
 from batcert.physics import barrel
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "engines"))
@@ -20,7 +21,7 @@ from test_flexible import hollow_bat  # noqa: E402
 
 @pytest.fixture
 def store():
-    with installed("barrel", barrel.clear_barrel_cache) as s:
+    with installed("barrel") as s:
         yield s
 
 
@@ -37,12 +38,12 @@ def test_a_stored_wall_is_the_computed_one(store, monkeypatch):
     bat = hollow_bat(2.5e-3)
     computed = barrel.cached_barrel_modes(bat)
     assert (store.saves, len(store.entries)) == (1, 1)
-    barrel.clear_barrel_cache()
+    workspace.current().clear()
 
     def refuse(*args, **kwargs):
         raise AssertionError("the wall was computed again")
 
-    monkeypatch.setattr(barrel, "compute_barrel_modes", refuse)
+    monkeypatch.setattr(barrel, "shell_modes", refuse)
     assert equal(barrel.cached_barrel_modes(bat), computed)
     assert store.saves == 1
 
@@ -60,7 +61,7 @@ def test_a_stored_entry_that_does_not_fit_is_recomputed(store):
             else:
                 entry[name] = value
         store.entries[key] = entry
-        barrel.clear_barrel_cache()
+        workspace.current().clear()
         assert equal(barrel.cached_barrel_modes(bat), computed)
         # and the entry is written again, whole
         assert barrel._from_arrays(store.entries[key], barrel.NOMINAL_CUT) is not None
@@ -68,15 +69,15 @@ def test_a_stored_entry_that_does_not_fit_is_recomputed(store):
 
 def test_the_second_run_reads_the_wall(batcert_cli, tmp_path, monkeypatch):
     monkeypatch.setenv("BATCERT_CACHE_DIR", str(tmp_path / "cache"))
-    barrel.clear_barrel_cache()
+    workspace.current().clear()
     first = batcert_cli("run", "aluminium-34", "-p", "ncaa-bbcor", "--json")
     stored = list((tmp_path / "cache" / "barrels").glob("*.arrays"))
     assert len(stored) == 1
-    barrel.clear_barrel_cache()
+    workspace.current().clear()
     monkeypatch.setattr(barrel, "compute_barrel_modes",
                         lambda *a, **k: pytest.fail("the wall was computed again"))
     second = batcert_cli("run", "aluminium-34", "-p", "ncaa-bbcor", "--json")
     assert first.exit_code == second.exit_code
     strip = [line for line in first.stdout.splitlines() if '"created"' not in line]
     assert strip == [line for line in second.stdout.splitlines() if '"created"' not in line]
-    barrel.clear_barrel_cache()
+    workspace.current().clear()

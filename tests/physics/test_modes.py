@@ -10,10 +10,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from batcert import workspace
 from batcert.physics import beam
 from batcert.physics import modes as modes_module
 from batcert.physics.batmodel import Material
-from batcert.physics.modes import cached_modes, clear_mode_cache, compute_modes, mode_nodes
+from batcert.physics.modes import cached_modes, compute_modes, mode_nodes
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/, for the shared helper
 from r161 import r161_bat, solid_bat  # noqa: E402
@@ -162,7 +163,7 @@ def test_mode_nodes_count(r161):
 # --- residual compliance -------------------------------------------------------------------------
 
 def test_cache_keys_on_content(r161):
-    clear_mode_cache()
+    workspace.current().clear("modes")
     a = cached_modes(r161, "free", PIVOT, 12)
     copy = dataclasses.replace(r161, bending_stiffness=r161.bending_stiffness.copy(), name="x")
     assert cached_modes(copy, "free", PIVOT, 12) is a

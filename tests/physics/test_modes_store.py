@@ -1,4 +1,4 @@
-"""A bat's beam modes kept between processes (batcert.physics.stores, batcert.cache): stored
+"""A bat's beam modes kept between processes (batcert.workspace, batcert.cache): stored
 modes are the computed ones exactly, an entry that does not fit is recomputed, and the command
 line's second run reads the modes instead of computing them."""
 
@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from dict_store import installed
+from dict_store import forget, installed
 from r161 import r161_bat
 
 from batcert.physics import modes as modes_module
@@ -17,7 +17,7 @@ FIELDS = ("z", "omega", "shapes", "rotations")
 
 @pytest.fixture
 def store():
-    with installed("modes", modes_module.clear_mode_cache) as s:
+    with installed("modes") as s:
         yield s
 
 
@@ -30,7 +30,7 @@ def test_stored_modes_are_the_computed_ones(store, monkeypatch, support):
     bat = r161_bat()
     computed = modes_module.cached_modes(bat, support, PIVOT, 16)
     assert store.saves == 1
-    modes_module.clear_mode_cache()
+    forget("modes")
     monkeypatch.setattr(modes_module, "compute_modes", refuse)
     read = modes_module.cached_modes(bat, support, PIVOT, 16)
     assert (read.support, read.pivot, read.n_rigid) == (support, PIVOT, computed.n_rigid)
@@ -55,7 +55,7 @@ def test_an_entry_that_does_not_fit_is_recomputed(store, damage):
     computed = modes_module.cached_modes(bat, "pinned", PIVOT, 16)
     (entry,) = store.entries.values()
     damage(entry)
-    modes_module.clear_mode_cache()
+    forget("modes")
     again = modes_module.cached_modes(bat, "pinned", PIVOT, 16)
     for f in FIELDS:
         np.testing.assert_array_equal(getattr(again, f), getattr(computed, f))
@@ -64,14 +64,14 @@ def test_an_entry_that_does_not_fit_is_recomputed(store, damage):
 
 def test_the_second_run_reads_the_modes(batcert_cli, tmp_path, monkeypatch):
     monkeypatch.setenv("BATCERT_CACHE_DIR", str(tmp_path / "cache"))
-    modes_module.clear_mode_cache()
+    forget("modes")
     first = batcert_cli("run", "ash-34", "-p", "proposed", "--json")
     # the engine's pinned modes and the report's free ones
     assert len(list((tmp_path / "cache" / "modes").glob("*.arrays"))) == 2
-    modes_module.clear_mode_cache()
+    forget("modes")
     monkeypatch.setattr(modes_module, "compute_modes", refuse)
     second = batcert_cli("run", "ash-34", "-p", "proposed", "--json")
     assert first.exit_code == second.exit_code == 0
     strip = [line for line in first.stdout.splitlines() if '"created"' not in line]
     assert strip == [line for line in second.stdout.splitlines() if '"created"' not in line]
-    modes_module.clear_mode_cache()
+    forget("modes")

@@ -36,6 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from batcert import workspace
 from batcert.physics.balls import footprint
 from batcert.physics.balls.impact1d import body_impact, contact_time_estimate
 from batcert.physics.balls.viscoelastic import Viscoelastic, ViscoelasticMarch
@@ -335,43 +336,35 @@ def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarra
     return best
 
 
-_FITS: dict[tuple, BallFit] = {}
-
-
 def cached_fit(tests: tuple[BallTest, ...], mass: float, radius: float) -> BallFit:
-    """:func:`fit_ball`, kept in the process and in the store installed for ``"ball-fit"``
-    (:mod:`batcert.physics.stores`): a fit takes about a second, a ball file is read by
-    every run."""
-    from batcert.physics import stores
+    """:func:`fit_ball`, kept by the active workspace (kind ``ball-fit``, also in its disk
+    store where one is attached): a fit takes about a second, a ball file is read by every
+    run."""
+    tests = tuple(tests)
+    return workspace.current().call("ball-fit", _fit, tests, float(mass), float(radius),
+                                    save=_fit_arrays, load=lambda a: _fit_from(a, tests))
 
-    key = (tuple(tests), float(mass), float(radius))
-    hit = _FITS.get(key)
-    if hit is not None:
-        return hit
 
-    def to_arrays(f: BallFit) -> dict:
-        return {"law": np.array([getattr(f.law, p) for p in PARAMETERS]), "model": np.array(f.model),
-                "residuals": np.array(f.residuals), "chi2": np.array([f.chi2, f.dof]),
-                "uncertainty": np.array([f.uncertainty[p] for p in PARAMETERS]),
-                "direction": np.array(f.lot_direction)}
+def _fit(tests: tuple[BallTest, ...], mass: float, radius: float) -> BallFit:
+    return fit_ball(tests, mass, radius)
 
-    def from_arrays(a: dict | None) -> BallFit | None:
-        if a is None or len(a.get("model", ())) != len(tests):
-            return None
-        if "law" not in a:
-            return None
-        law = Viscoelastic(*(float(x) for x in a["law"]))
-        return BallFit(law, tuple(tests), tuple(float(x) for x in a["model"]),
-                       tuple(float(x) for x in a["residuals"]), float(a["chi2"][0]),
-                       int(a["chi2"][1]), dict(zip(PARAMETERS, (float(x) for x in a["uncertainty"]),
-                                                   strict=True)),
-                       tuple(float(x) for x in a["direction"]))
 
-    fit = stores.kept("ball-fit", key, lambda: fit_ball(tests, mass, radius), to_arrays,
-                      from_arrays)
-    assert fit is not None
-    _FITS[key] = fit
-    return fit
+def _fit_arrays(f: BallFit) -> dict:
+    return {"law": np.array([getattr(f.law, p) for p in PARAMETERS]), "model": np.array(f.model),
+            "residuals": np.array(f.residuals), "chi2": np.array([f.chi2, f.dof]),
+            "uncertainty": np.array([f.uncertainty[p] for p in PARAMETERS]),
+            "direction": np.array(f.lot_direction)}
+
+
+def _fit_from(a: dict | None, tests: tuple[BallTest, ...]) -> BallFit | None:
+    if a is None or len(a.get("model", ())) != len(tests) or "law" not in a:
+        return None
+    law = Viscoelastic(*(float(x) for x in a["law"]))
+    return BallFit(law, tests, tuple(float(x) for x in a["model"]),
+                   tuple(float(x) for x in a["residuals"]), float(a["chi2"][0]),
+                   int(a["chi2"][1]), dict(zip(PARAMETERS, (float(x) for x in a["uncertainty"]),
+                                               strict=True)),
+                   tuple(float(x) for x in a["direction"]))
 
 
 def _logit(p: float) -> float:

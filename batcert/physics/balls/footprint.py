@@ -28,9 +28,10 @@ in docs/validation.md. Units: SI ([m]).
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 
 import numpy as np
+
+from batcert import workspace
 
 
 def elliptic_integrals(m):
@@ -65,8 +66,12 @@ def _elliptic(m: float) -> tuple[float, float]:
     return k, k * (1.0 - c2_sum)
 
 
-@lru_cache(maxsize=256)
 def _shape(curvature_ratio: float) -> tuple[float, float, float]:
+    """:func:`_ellipse_shape`, kept by the active workspace (kind ``footprint``)."""
+    return workspace.current().call("footprint", _ellipse_shape, float(curvature_ratio))
+
+
+def _ellipse_shape(curvature_ratio: float) -> tuple[float, float, float]:
     """``e^2``, ``K``, ``E`` of the Hertz ellipse for ``B / A`` (bisection on ``e^2``)."""
     if curvature_ratio <= 1.0 + 1e-12:
         return 0.0, 0.5 * math.pi, 0.5 * math.pi
@@ -162,8 +167,19 @@ def circumferential_factors(orders, half_angle) -> np.ndarray:
     return out
 
 
-@lru_cache(maxsize=16)
 def axial_weights(points: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`gauss_parabolic`, read-only, kept by the active workspace (kind ``footprint``)."""
+    return workspace.current().call("footprint", _read_only_rule, int(points))
+
+
+def _read_only_rule(points: int) -> tuple[np.ndarray, np.ndarray]:
+    xi, w = gauss_parabolic(points)
+    xi.setflags(write=False)
+    w.setflags(write=False)
+    return xi, w
+
+
+def gauss_parabolic(points: int) -> tuple[np.ndarray, np.ndarray]:
     """Gauss rule of the parabolic weight ``(1 - xi^2)`` on [-1, 1] (Gauss-Jacobi, alpha =
     beta = 1): ``points`` abscissae and weights summing to 1, so that ``sum w f(xi)`` is the
     parabola-weighted mean of ``f`` (exact for polynomials of degree ``2 points - 1``). The
@@ -175,7 +191,4 @@ def axial_weights(points: int) -> tuple[np.ndarray, np.ndarray]:
     j = np.arange(points)
     moments = np.where(j % 2 == 0, 2.0 / (j + 1) - 2.0 / (j + 3), 0.0)
     w = np.linalg.solve(np.vander(xi, points, increasing=True).T, moments)
-    w = w / w.sum()
-    xi.setflags(write=False)
-    w.setflags(write=False)
-    return xi, w
+    return xi, w / w.sum()

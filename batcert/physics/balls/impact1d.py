@@ -20,9 +20,10 @@ All impacts advance together (arrays of one row per impact). Units: SI.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
+
+from batcert import workspace
 
 STEPS = 300  # steps per estimated contact time (COR converged to about 1e-7, tests)
 _MAX_STEPS_FACTOR = 12  # give up (flagged, not separated) after this many contact times
@@ -200,27 +201,28 @@ TABLE_SPEEDS = np.exp(np.linspace(np.log(0.1), np.log(300.0), 321))
 _LOG_SPEEDS = np.log(TABLE_SPEEDS)
 
 
-@lru_cache(maxsize=64)
 def wall_table(law, mass: float) -> dict[str, np.ndarray]:
     """The ball (``law``, ``mass`` [kg]) against a rigid flat wall at :data:`TABLE_SPEEDS`:
-    its COR and impulse-weighted mean compression (one batched integration, about 20 ms; kept
-    in the store installed for ``"ball-wall"``, :mod:`batcert.physics.stores`, since every run
-    of the ball reads it)."""
-    from batcert.physics import stores
+    its COR and impulse-weighted mean compression (one batched integration, about 20 ms),
+    read-only; kept by the active workspace (kind ``ball-wall``, also in its disk store where
+    one is attached: every run of the ball reads it)."""
+    return workspace.current().call("ball-wall", _wall_table_of, law, float(mass),
+                                    save=dict, load=_wall_table_from)
 
-    def compute() -> dict[str, np.ndarray]:
-        res = law.body_impact(mass, TABLE_SPEEDS, 0.0, history=False)
-        return {"cor": res.cor, "mean_compression": res.mean_compression}
 
-    def from_arrays(a: dict | None) -> dict[str, np.ndarray] | None:
-        if a is None or any(k not in a or np.shape(a[k]) != TABLE_SPEEDS.shape
-                            for k in ("cor", "mean_compression")):
-            return None
-        return {k: np.array(a[k], dtype=float) for k in ("cor", "mean_compression")}
+def _wall_table_of(law, mass: float) -> dict[str, np.ndarray]:
+    res = law.body_impact(mass, TABLE_SPEEDS, 0.0, history=False)
+    return _read_only_table({"cor": res.cor, "mean_compression": res.mean_compression})
 
-    key = (type(law).__name__, repr(law), float(mass), STEPS, TABLE_SPEEDS.size)
-    table = stores.kept("ball-wall", key, compute, dict, from_arrays)
-    assert table is not None
+
+def _wall_table_from(a: dict | None) -> dict[str, np.ndarray] | None:
+    if a is None or any(k not in a or np.shape(a[k]) != TABLE_SPEEDS.shape
+                        for k in ("cor", "mean_compression")):
+        return None
+    return _read_only_table({k: np.array(a[k], dtype=float) for k in ("cor", "mean_compression")})
+
+
+def _read_only_table(table: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     for values in table.values():
         values.setflags(write=False)
     return table

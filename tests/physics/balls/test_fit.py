@@ -12,8 +12,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from dict_store import installed
+from dict_store import forget, installed
 
+from batcert import workspace
 from batcert.physics.balls import Viscoelastic
 from batcert.physics.balls import fit as fit_module
 from batcert.physics.balls.fit import PARAMETERS, BallTest, FitError, cached_fit, fit_ball, predict
@@ -218,11 +219,12 @@ def test_moved_law_follows_the_cor_tests(collegiate, collegiate_fit):
 
 
 @pytest.fixture
-def own_fits(monkeypatch):
+def own_fits():
     """The fits kept in the process for this test only: the process's (e.g. the shipped
     ball's, as fitted) are untouched, so that later tests get the same law (another read from
     a store would differ by rounding, test_stored_fit_is_the_computed_one_exactly)."""
-    monkeypatch.setattr(fit_module, "_FITS", {})
+    with workspace.active(workspace.Workspace()):
+        yield
 
 
 def test_cached_fit_returns_the_same_fit(own_fits):
@@ -236,10 +238,10 @@ def stored_and_computed(monkeypatch):
     """A fit computed with a store installed for "ball-fit" (the command line's cache), and
     the same fit read back from the store (fitting again fails the test)."""
     tests = tuple(synthetic_tests(exact_values))
-    with installed("ball-fit", fit_module._FITS.clear) as store:
+    with installed("ball-fit") as store:
         computed = cached_fit(tests, MASS, RADIUS)
         assert store.saves == 1
-        fit_module._FITS.clear()
+        forget("ball-fit")
         with monkeypatch.context() as m:
             m.setattr(fit_module, "fit_ball", lambda *a: pytest.fail("fitted again"))
             read = cached_fit(tests, MASS, RADIUS)
@@ -265,10 +267,10 @@ def test_stored_fit_is_the_computed_one_exactly(own_fits, monkeypatch):
     for law in laws:  # a fit of each law, made up: the store is what is tested
         made = fit_module.BallFit(law, tests, (1.0,) * len(tests), (0.0,) * len(tests), 0.0,
                                   len(tests) - 4, dict.fromkeys(PARAMETERS, 1.0))
-        with installed("ball-fit", fit_module._FITS.clear):
+        with installed("ball-fit"):
             with monkeypatch.context() as m:
                 m.setattr(fit_module, "fit_ball", lambda *a, made=made: made)
                 assert cached_fit(tests, MASS, RADIUS) is made
-            fit_module._FITS.clear()
+            forget("ball-fit")
             read.append(cached_fit(tests, MASS, RADIUS).law)
     assert tuple(read) == laws

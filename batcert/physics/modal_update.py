@@ -13,8 +13,13 @@ the rows and the state kept in frames that turn with the free modes (:class:`Tur
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
+
+# rows that share their modes are read and forced with one matrix product per run of them when
+# the runs average at least this many rows (else row by row; measured, bench_engine.py)
+SHARED_ROWS = 16
 
 # each step's modal update runs over pieces of rows of about this many impact-mode entries, so
 # that a piece's state, forcing and read-out stay in the processor's cache while the per-impact
@@ -28,6 +33,101 @@ PIECE_ENTRIES = 73_728
 # e1^k X, relative to its latest forcing)
 FRAME_STEPS = 32
 FRAME_GROWTH = 50.0
+
+
+class ModalUpdate(Protocol):
+    """The one interface of the batched kernel's modal update: how a step of
+    :func:`~batcert.physics.march.march` advances ``Y`` (n, K) under the step's forces and
+    reads the contact point's free motion from it. :class:`RowByRow` is the plain reference
+    (every row its own propagation, forcing and read-out; ``SHARED_ROWS`` set above the batch
+    size makes :func:`layout` choose it); :class:`SharedRuns` the fast one, which
+    tests/physics/test_march.py holds to the reference to rounding."""
+
+    def advance(self, z: np.ndarray, f: np.ndarray) -> np.ndarray:
+        """Advance the state ``z`` in place under the forces ``f``; the read-out, (n, 4 G)."""
+        ...
+
+    def current(self, z: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """``Y`` of ``rows`` (indices or a mask) from the state ``z``."""
+        ...
+
+    def take(self, keep: np.ndarray) -> ModalUpdate:
+        """The update of the rows ``keep`` only (finished impacts dropped)."""
+        ...
+
+
+@dataclass(frozen=True)
+class Block:
+    """The step constants of the rows ``start .. stop`` of one bat
+    (:func:`batcert.physics.etdrk4.coefficients`): ``shared`` when every row has the block's
+    modes, then ``e1`` (1, K), ``read`` (1, 4, 2K) and ``push`` (1, 3, K) are the block's; else
+    one row each."""
+
+    start: int
+    stop: int
+    shared: bool
+    e1: np.ndarray  # propagator e^(lam h)
+    read: np.ndarray  # read-out weights of Y as floats: free y after h/2 and h, y', y
+    push: np.ndarray  # forcing of Z per unit gain by (F0, Fa + Fb, Fc), complex
+
+
+def layout(blocks: list[Block], cg: np.ndarray, om: np.ndarray, zeta: np.ndarray,
+           group_starts: np.ndarray | None) -> ModalUpdate:
+    """The modal update of ``blocks``' rows: :class:`SharedRuns` when the blocks form runs of
+    shared modes of on average at least :data:`SHARED_ROWS` rows, else :class:`RowByRow`.
+    ``cg``: each row's ``c_y g`` (n, K); ``om``, ``zeta``: its modes; ``group_starts``: the
+    columns where a coupling's groups start, and the end (G + 1,), or None."""
+    n = cg.shape[0]
+    runs = _runs(blocks, om, zeta)
+    if runs is not None and len(runs) * SHARED_ROWS <= max(n, SHARED_ROWS):
+        return _shared_runs([blocks[i] for i, _, _ in runs], runs, cg, group_starts)
+    return _row_by_row(blocks, cg, group_starts)
+
+
+def _runs(blocks: list[Block], om: np.ndarray, zeta: np.ndarray
+          ) -> list[tuple[int, int, int]] | None:
+    """Runs of consecutive blocks that share their modes, ``(first block, start, stop)``; None
+    if some block's rows have modes of their own."""
+    runs: list[tuple[int, int, int]] = []
+    for i, blk in enumerate(blocks):
+        a, b = blk.start, blk.stop
+        if not blk.shared:
+            return None
+        if runs and np.array_equal(om[a], om[runs[-1][1]]) and zeta[a] == zeta[runs[-1][1]]:
+            runs[-1] = (runs[-1][0], runs[-1][1], b)
+        else:
+            runs.append((i, a, b))
+    return runs
+
+
+def _shared_runs(heads: list[Block], runs: list[tuple[int, int, int]], cg: np.ndarray,
+                 group_starts: np.ndarray | None) -> SharedRuns:
+    read = np.concatenate([blk.read for blk in heads])  # (runs, 4, 2K)
+    push = np.concatenate([blk.push for blk in heads])  # (runs, 3, K)
+    if group_starts is not None:  # by group: forcing rows s G + g, read-out columns r G + g
+        groups = group_starts.size - 1
+        member = np.repeat(np.arange(groups), np.diff(group_starts))
+        mask = (member[None, :] == np.arange(groups)[:, None]).astype(float)  # (G, K)
+        push = (push[:, :, None, :] * mask).reshape(push.shape[0], -1, push.shape[2])
+        read = (read[:, :, None, :] * np.repeat(mask, 2, axis=1)).reshape(
+            read.shape[0], -1, read.shape[2])
+    return SharedRuns(
+        e1=np.concatenate([blk.e1 for blk in heads]),
+        R=np.ascontiguousarray(read.transpose(0, 2, 1)),
+        P=np.ascontiguousarray(push).view(float),
+        scale=np.repeat(cg, 2, axis=1),
+        group=np.repeat(np.arange(len(runs)), [b - a for _, a, b in runs]))
+
+
+def _row_by_row(blocks: list[Block], cg: np.ndarray, group_starts: np.ndarray | None
+                ) -> RowByRow:
+    def rows(part: str) -> np.ndarray:  # each row's copy of a block's part
+        return np.concatenate([np.broadcast_to(getattr(blk, part), (blk.stop - blk.start,)
+                                               + getattr(blk, part).shape[1:])
+                               for blk in blocks])
+    return RowByRow(e1=rows("e1"), R=np.ascontiguousarray(rows("read")),
+                    B=np.ascontiguousarray(cg[:, None, :] * rows("push")).view(float),
+                    starts=None if group_starts is None else 2 * group_starts[:-1])
 
 
 @dataclass

@@ -1,7 +1,7 @@
 """batcert.physics.march: the two ways a step reads and forces the modes give the same impacts.
 
 Rows that share their modes (one bat) are read and forced with one matrix product per run of
-them; rows that do not, row by row (``march._SHARED_ROWS`` decides). The integration is the same
+them; rows that do not, row by row (``modal_update.SHARED_ROWS`` decides). The integration is the same
 ETDRK4 step either way, so the two must agree to rounding; the tolerance (1e-12 relative) is
 rounding accumulated over some 100 steps, far below the engine's 2e-4 accuracy target.
 """
@@ -48,7 +48,7 @@ def impacts(request):
 
 def _march(impacts, shared_rows: int, monkeypatch, restitution=True):
     system, speed, ball = impacts
-    monkeypatch.setattr(march, "_SHARED_ROWS", shared_rows)
+    monkeypatch.setattr(modal_update, "SHARED_ROWS", shared_rows)
     rule = "compression" if restitution else "relative-speed"
     state = type(ball.law).state_of([ball.law], [ball.mass], np.zeros(speed.size, int), 1.0,
                                     rule, speed)
@@ -81,7 +81,7 @@ def test_shared_runs_and_row_by_row_give_the_same_impacts(impacts, monkeypatch, 
 def test_pieces_change_nothing(impacts, monkeypatch):
     # the shared runs (40 rows each) updated in pieces of 7 rows, cutting every run, against
     # whole runs: the same impacts to rounding
-    monkeypatch.setattr(march, "_SHARED_ROWS", 1)
+    monkeypatch.setattr(modal_update, "SHARED_ROWS", 1)
     whole = _march(impacts, 1, monkeypatch)
     monkeypatch.setattr(modal_update, "PIECE_ENTRIES", 7 * impacts[0].omega.shape[1])
     cut = _march(impacts, 1, monkeypatch)
@@ -103,7 +103,7 @@ def test_the_turning_frames_change_nothing(impacts, monkeypatch):
     # FRAME_STEPS steps (the impacts end between folds, so their state is read from inside a
     # frame), against folded back at every step, which is the plain propagation Y <- e1 Y:
     # the same impacts to rounding
-    monkeypatch.setattr(march, "_SHARED_ROWS", 1)
+    monkeypatch.setattr(modal_update, "SHARED_ROWS", 1)
     turning = _march(impacts, 1, monkeypatch)
     monkeypatch.setattr(modal_update, "FRAME_STEPS", 1)
     plain = _march(impacts, 1, monkeypatch)

@@ -9,10 +9,10 @@ from __future__ import annotations
 import importlib
 from dataclasses import dataclass
 
-from batcert.engines.base import Engine, ImpactBatch, ImpactOutcome
+from batcert.engines.base import Engine, ImpactBatch, ImpactOutcome, Job
 
 __all__ = ["ENGINES", "Engine", "EngineEntry", "EngineUnavailable", "ImpactBatch",
-           "ImpactOutcome", "available_engines", "get_engine"]
+           "ImpactOutcome", "Job", "available_engines", "get_engine"]
 
 
 @dataclass(frozen=True)
@@ -29,8 +29,8 @@ ENGINES: dict[str, EngineEntry] = {
     "rigid": EngineEntry("rigid", "batcert.engines.rigid", "RigidEngine",
                          "closed-form rigid bat (Smith 2001 Eqs. 1-7): exact and instant"),
     "flexible": EngineEntry("flexible", "batcert.engines.flexible", "FlexibleEngine",
-                            "vibrating Timoshenko beam and hollow barrel against Nathan's (2000) "
-                            "hysteresis ball, batched"),
+                            "vibrating Timoshenko beam and hollow barrel against the ball's "
+                            "contact law (viscoelastic, or Nathan's 2000 hysteresis), batched"),
 }
 
 

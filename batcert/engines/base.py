@@ -7,13 +7,16 @@ bat and one ball in one call, vectorised over the batch. Engines are listed in
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Protocol
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
 from batcert.physics.ball import BallModel
 from batcert.physics.batmodel import BatModel
+
+if TYPE_CHECKING:
+    from batcert.physics.modes import Modes
 
 
 @dataclass(frozen=True)
@@ -43,6 +46,28 @@ class ImpactBatch:
 
 
 @dataclass(frozen=True)
+class Job:
+    """One batch of impacts of one bat and ball about one pivot: what :meth:`Engine.solve_many`
+    takes, a list of them (the runner's batches of many protocols and bats)."""
+
+    bat: BatModel
+    ball: BallModel
+    pivot: float  # [m from knob]
+    batch: ImpactBatch
+    support: str = "pinned"  # "pinned" or "free"
+    modes: Modes | None = None  # the flexible engine: modes to use instead of the bat's own
+
+    @classmethod
+    def of(cls, job: Job | tuple[Any, ...]) -> Job:
+        """``job``, or a tuple ``(bat, ball, pivot, batch[, support[, modes]])`` as a Job."""
+        return job if isinstance(job, Job) else cls(*job)
+
+    def with_batch(self, batch: ImpactBatch) -> Job:
+        """The same job with another batch of impacts."""
+        return replace(self, batch=batch)
+
+
+@dataclass(frozen=True)
 class ImpactOutcome:
     """What an engine returns for a batch, arrays of shape (n,)."""
 
@@ -67,9 +92,10 @@ class Engine(Protocol):
         ``support`` is "pinned" (bat pinned at the pivot) or "free"."""
         ...
 
-    def solve_many(self, jobs: list[tuple]) -> list[ImpactOutcome]:
-        """Solve several ``(bat, ball, pivot, batch, support)`` jobs at once (the runner's
-        batches of many protocols and bats); the same outcomes as :meth:`solve` one by one."""
+    def solve_many(self, jobs: list[Job]) -> list[ImpactOutcome]:
+        """Solve several jobs at once (the runner's batches of many protocols and bats); the
+        same outcomes as :meth:`solve` one by one. A tuple ``(bat, ball, pivot, batch[,
+        support[, modes]])`` is taken for a :class:`Job`."""
         ...
 
     def settings(self, bat: BatModel | None = None) -> dict:

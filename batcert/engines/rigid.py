@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from batcert.engines.base import ImpactBatch, ImpactOutcome
+from batcert.engines.base import ImpactBatch, ImpactOutcome, Job
 from batcert.physics import rigid
 from batcert.physics.ball import BallModel
 from batcert.physics.balls import footprint
@@ -50,9 +50,11 @@ class RigidEngine:
             "contact_surface": ("the barrel's cylinder (Hertz's stiffness factor)"
                                 if self.contact_surface == "cylinder" else "flat")}
 
-    def solve_many(self, jobs: list[tuple]) -> list[ImpactOutcome]:
-        """Closed forms cost nothing per call: :meth:`solve` for each job."""
-        return [self.solve(*job) for job in jobs]
+    def solve_many(self, jobs: list[Job]) -> list[ImpactOutcome]:
+        """Closed forms cost nothing per call: :meth:`solve` for each job (a given job's
+        modes do not matter to a rigid bat)."""
+        return [self.solve(j.bat, j.ball, j.pivot, j.batch, j.support)
+                for j in map(Job.of, jobs)]
 
     def solve(self, bat: BatModel, ball: BallModel, pivot: float, batch: ImpactBatch,
               support: str = "pinned") -> ImpactOutcome:

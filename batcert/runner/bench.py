@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from batcert.engines.base import Engine, ImpactBatch, ImpactOutcome
+from batcert.engines.base import Engine, ImpactBatch, ImpactOutcome, Job
 from batcert.methods.metrics import ImpactMetrics, impact_metrics
 from batcert.model.build import BuiltBat
 from batcert.runner.conditions import Condition
@@ -48,7 +48,7 @@ class Bench:
         """Solve one request now: the metrics and the engine's diagnostics, shaped like
         ``locations``."""
         req = self.request(conds, locations)
-        return req.finish(self.engine.solve(*req.job()))
+        return req.finish(self.engine.solve_many([req.job()])[0])
 
 
 @dataclass(frozen=True)
@@ -60,10 +60,9 @@ class Request:
     shape: tuple[int, ...]
     batch: ImpactBatch
 
-    def job(self) -> tuple:
+    def job(self) -> Job:
         b = self.bench
-        job = (b.built.model, b.ball.model, b.pivot, self.batch, b.support)
-        return job if b.modes is None else (*job, b.modes)
+        return Job(b.built.model, b.ball.model, b.pivot, self.batch, b.support, b.modes)
 
     def finish(self, out: ImpactOutcome, ball_cor: np.ndarray | None = None
                ) -> tuple[ImpactMetrics, dict[str, np.ndarray]]:

@@ -18,8 +18,9 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from batcert.engines import ImpactBatch, get_engine
+from batcert.engines import ImpactBatch, Job, get_engine
 from batcert.engines.flexible import DEFAULT_MODES, FlexibleEngine, rigid_mode_velocities
+from batcert.engines.flexible_system import patch_of
 from batcert.engines.rigid import RigidEngine
 from batcert.model.geometry import build_geometry
 from batcert.physics import barrel, rigid
@@ -106,8 +107,8 @@ def reference_impact(bat, ball, pivot, support, z, pitch_speed, bat_angular_spee
 
     rel = np.array([bat_angular_speed * (z - pivot) - pitch_speed])
     recoil = rigid.recoil_factor(bat, ball.mass, pivot, np.array([z - pivot]), support)
-    foot = FlexibleEngine(contact_patch=patch, **options)._patch(bat, ball, np.array([z]), rel,
-                                                                 recoil)
+    settings = FlexibleEngine(contact_patch=patch, **options).system_settings()
+    foot = patch_of(settings, bat, ball, np.array([z]), rel, recoil)
     pts, w = foot.points, foot.weights
     nr, om = modes.n_rigid, modes.omega.copy()
     phi = (modes.at(pts.ravel()) * w.ravel()[:, None]).sum(axis=0)
@@ -420,7 +421,7 @@ def test_solve_many_equals_separate_solves(r161, monkeypatch):
             (hollow, other_ball, PIVOT, ImpactBatch(np.array([0.55, 0.7]), -60.0, 0.0),
              "pinned")]
     engine = FlexibleEngine(record_states=True)
-    assert sorted(map(len, engine._alike(jobs).values())) == [1, 1, 1, 2, 2]
+    assert sorted(map(len, engine._alike([Job(*j) for j in jobs]).values())) == [1, 1, 1, 2, 2]
     alone = [engine.solve(*job) for job in jobs]
     for chunk, pass_rows in ((4096, 4096), (2, 4096), (4096, 2)):
         monkeypatch.setattr(flexible_module, "_PASS_ROWS", pass_rows)
@@ -472,7 +473,7 @@ def test_the_memos_keep_small_batches_only(monkeypatch):
 
 
 def test_passes_cut_large_jobs_and_share_small_ones():
-    from batcert.engines.flexible import _passes
+    from batcert.engines.passes import passes as _passes
 
     # jobs of 5, 2, 1, 0 and 3 rows in passes of at most 4 rows, in order
     assert _passes([5, 2, 1, 0, 3], 4) == [[(0, 0, 4)],

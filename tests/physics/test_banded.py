@@ -12,6 +12,8 @@ import scipy.linalg
 
 from batcert.physics import barrel, shell
 from batcert.physics.banded import inverse_band, lower_band
+from batcert.physics.barrel import patch as patch_module
+from batcert.physics.barrel import wall as wall_module
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "engines"))
 from test_flexible import hollow_bat  # noqa: E402
@@ -81,7 +83,7 @@ def _dense_flexibility(sh, n: int) -> np.ndarray:
         inv = p @ inv @ p.T
     full = np.zeros((system.node_dofs * sh.z.size,) * 2)
     full[np.ix_(system.free, system.free)] = inv
-    w = barrel._w_space(system, sh.z.size)
+    w = wall_module._w_space(system, sh.z.size)
     return full[np.ix_(w, w)]
 
 
@@ -105,8 +107,8 @@ def test_the_band_covers_the_longest_patch_a_ball_spec_allows(wall):
     z = np.array([0.45, 0.6, sh.z[0] + 0.002, sh.z[-1] - 0.002])
     half = np.full(z.size, 0.1)
     points = z[:, None] + half[:, None] * np.linspace(-1, 1, 15)[None, :]
-    loads = barrel._w_load(sh, points, np.full(points.shape, 1 / 15))
-    band = barrel._patch_flexibility_of(modes.green, loads)
+    loads = patch_module._w_load(sh, points, np.full(points.shape, 1 / 15))
+    band = patch_module._patch_flexibility_of(modes.green, loads)
     g = loads.dense()
     for o, n in enumerate(modes.orders[:3]):
         dense = np.einsum("pi,ij,pj->p", g, _dense_flexibility(sh, n), g)
@@ -114,8 +116,8 @@ def test_the_band_covers_the_longest_patch_a_ball_spec_allows(wall):
     assert barrel.PATCH_SPAN >= 2 * 0.1
     wider = z[:1, None] + 0.15 * np.linspace(-1, 1, 15)[None, :]
     with pytest.raises(ValueError, match="longer than"):
-        barrel._patch_flexibility_of(
-            modes.green, barrel._w_load(sh, wider, np.full(wider.shape, 1 / 15)))
+        patch_module._patch_flexibility_of(
+            modes.green, patch_module._w_load(sh, wider, np.full(wider.shape, 1 / 15)))
 
 
 def test_patches_of_different_lengths_read_together(wall):
@@ -127,17 +129,17 @@ def test_patches_of_different_lengths_read_together(wall):
     half = np.array([0.1, 0.01, 0.03, 0.05, 0.1, 0.02])
     points = z[:, None] + half[:, None] * np.linspace(-1, 1, 15)[None, :]
     weights = np.full(points.shape, 1 / 15)
-    loads = barrel._w_load(sh, points, weights)
+    loads = patch_module._w_load(sh, points, weights)
     g = loads.dense()
     assert not g[-1].any()
-    together = barrel._patch_flexibility_of(modes.green, loads)
+    together = patch_module._patch_flexibility_of(modes.green, loads)
     for o, n in enumerate(modes.orders[:3]):
         dense = np.einsum("pi,ij,pj->p", g, _dense_flexibility(sh, n), g)
         np.testing.assert_allclose(together[o, :-1], dense[:-1], rtol=1e-9)
     np.testing.assert_array_equal(together[:, -1], 0.0)
     for i in range(z.size - 1):  # alone, a patch has its own window
-        alone = barrel._w_load(sh, points[i:i + 1], weights[i:i + 1])
+        alone = patch_module._w_load(sh, points[i:i + 1], weights[i:i + 1])
         np.testing.assert_allclose(alone.dense()[0], g[i], rtol=1e-15)
         np.testing.assert_allclose(together[:, i],
-                                   barrel._patch_flexibility_of(modes.green, alone)[:, 0],
+                                   patch_module._patch_flexibility_of(modes.green, alone)[:, 0],
                                    rtol=1e-13)

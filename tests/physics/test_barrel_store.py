@@ -13,6 +13,7 @@ import pytest
 
 from batcert import workspace
 from batcert.physics import barrel
+from batcert.physics.barrel import wall
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "engines"))
 from dict_store import installed  # noqa: E402
@@ -43,7 +44,7 @@ def test_a_stored_wall_is_the_computed_one(store, monkeypatch):
     def refuse(*args, **kwargs):
         raise AssertionError("the wall was computed again")
 
-    monkeypatch.setattr(barrel, "shell_modes", refuse)
+    monkeypatch.setattr(wall, "shell_modes", refuse)
     assert equal(barrel.cached_barrel_modes(bat), computed)
     assert store.saves == 1
 
@@ -64,7 +65,7 @@ def test_a_stored_entry_that_does_not_fit_is_recomputed(store):
         workspace.current().clear()
         assert equal(barrel.cached_barrel_modes(bat), computed)
         # and the entry is written again, whole
-        assert barrel._from_arrays(store.entries[key], barrel.NOMINAL_CUT) is not None
+        assert wall._from_arrays(store.entries[key], barrel.NOMINAL_CUT) is not None
 
 
 def test_the_second_run_reads_the_wall(batcert_cli, tmp_path, monkeypatch):
@@ -74,7 +75,7 @@ def test_the_second_run_reads_the_wall(batcert_cli, tmp_path, monkeypatch):
     stored = list((tmp_path / "cache" / "barrels").glob("*.arrays"))
     assert len(stored) == 1
     workspace.current().clear()
-    monkeypatch.setattr(barrel, "compute_barrel_modes",
+    monkeypatch.setattr(wall, "shell_modes",
                         lambda *a, **k: pytest.fail("the wall was computed again"))
     second = batcert_cli("run", "aluminium-34", "-p", "ncaa-bbcor", "--json")
     assert first.exit_code == second.exit_code

@@ -1,0 +1,95 @@
+"""What a lab measures of a hollow bat's barrel (:mod:`batcert.physics.barrel`): its hoop
+frequency (an impact-hammer test on the free bat) and its static compression stiffness between
+two platens.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from batcert.physics.barrel.wall import (
+    STATIC_ORDERS,
+    barrel_shell,
+    cached_barrel_modes,
+)
+from batcert.physics.batmodel import BatModel
+from batcert.physics.shell import (
+    assemble,
+    normal_reader,
+    static_solve,
+)
+
+
+def hoop_frequency(bat: BatModel) -> float | None:
+    """The barrel's hoop frequency [Hz]: its lowest n = 2 mode whose largest normal deflection
+    lies in the full-diameter barrel, the mode an impact-hammer test on the barrel of the free
+    bat measures; None for a solid bat.
+
+    A wall that is thinner in the taper than in the barrel can have a lower n = 2 mode there
+    (a 4 mm barrel over a 2.2 mm taper: 2.37 kHz in the taper, 2.77 kHz in the barrel); the
+    trampoline and the lab's hoop frequency are the barrel's. Read from the cached modes
+    (:func:`cached_barrel_modes`; order 2 has no rigid motion, so the free and the supported
+    wall share these modes), or solved directly if the barrel's mode lies above them.
+    """
+    modes = cached_barrel_modes(bat)
+    if modes is None:
+        return None
+    in_barrel = modes.shell.r >= 0.99 * modes.shell.r.max()
+    radial = np.abs(modes.shapes[1::3])  # u_r at the nodes, (N, m)
+    for j in np.flatnonzero(modes.mode_orders == 2):  # ascending within the order
+        if in_barrel[int(np.argmax(radial[:, j]))]:
+            return float(modes.omega[j] / (2 * np.pi))
+    return _hoop_frequency_direct(bat)
+
+
+def _hoop_frequency_direct(bat: BatModel) -> float | None:
+    """:func:`hoop_frequency` from the lowest eight n = 2 modes, solved afresh."""
+    import scipy.linalg
+
+    shell = barrel_shell(bat)
+    if shell is None:
+        return None
+    system = assemble(shell, 2)
+    lam, vec = scipy.linalg.eigh(system.stiffness, system.mass, subset_by_index=(0, 7),
+                                 check_finite=False)
+    full = np.zeros((system.node_dofs * shell.z.size, lam.size))
+    full[system.free] = vec
+    deflection = np.abs(full[system.w_offset::system.node_dofs])  # radial, at the nodes
+    in_barrel = shell.r >= 0.99 * shell.r.max()
+    for j in range(lam.size):
+        if in_barrel[int(np.argmax(deflection[:, j]))]:
+            return float(np.sqrt(lam[j]) / (2 * np.pi))
+    return float(np.sqrt(lam[0]) / (2 * np.pi))  # no barrel-dominated mode among the lowest
+
+
+def compression_stiffness(bat: BatModel, position: float, platen_width: float) -> float:
+    """Static stiffness of the barrel squeezed between two flat platens [N/m].
+
+    Two equal and opposite line loads at ``theta = 0`` and ``pi``, each spread uniformly over
+    ``platen_width`` [m] along the bat around ``position`` [m from knob]: the force on one
+    platen divided by the platens' approach (the even orders 0, 2, 4 .. ``STATIC_ORDERS``;
+    the beam's bending, order 1, cancels). Shell theory only: the local crushing under a
+    narrow platen edge is not modelled.
+    """
+    import scipy.linalg
+
+    shell = barrel_shell(bat)
+    if shell is None:
+        raise ValueError("a solid bat has no barrel to compress")
+    half = 0.5 * platen_width
+    if not (shell.z[0] <= position - half and position + half <= shell.z[-1]):
+        raise ValueError("the platens do not lie on the hollow barrel")
+    k_pts = 16
+    zs = position + half * (np.arange(k_pts) + 0.5) / k_pts * 2 - half
+    w = np.full(k_pts, 1.0 / k_pts)
+    approach = 0.0
+    for n in range(0, STATIC_ORDERS + 1, 2):
+        system = assemble(shell, n, support=True)
+        cols, h = normal_reader(shell, n, zs)
+        f = np.zeros(system.node_dofs * shell.z.size)
+        np.add.at(f, cols.ravel(), (h * w[:, None]).ravel())
+        f_free = f[system.free][:, None]
+        factor = scipy.linalg.cho_factor(system.stiffness, check_finite=False)
+        x = static_solve(system, factor, f_free)
+        approach += 2.0 * 2.0 * float(f_free[:, 0] @ x[:, 0])  # both loads; both platens
+    return 1.0 / approach

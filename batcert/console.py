@@ -300,17 +300,16 @@ def run_summary(result, paths: Sequence[Any]) -> None:
              f"{limit}   [model: engine {result.engine}, {result.support}]", "")])
     if result.model_offset and not _Settings.quiet:
         _emit([(f"  known offset of the model: {result.model_offset}", "")])
+    shown = fmt.condition_metrics()
     t = Table(["condition", "pitch\n[m/s]", "bat w1\n[rad/s]", "impact\n[m from pivot]",
-               "COP\n[m]", "sweet spot\n[m]", "exit speed\n[m/s (mph)]", "COR", "BPF", "BESR",
-               "BBCOR", "e_A"], numeric=[False] + [True] * 11)
+               "COP\n[m]", "sweet spot\n[m]", "exit speed\n[m/s (mph)]", "COR",
+               *[heading for _, _, heading in shown]], numeric=[False] + [True] * (7 + len(shown)))
     for c in result.conditions:
         t.rows.append([c.name, f"{-c.pitch_speed + 0.0:.1f}", f"{c.bat_angular_speed:.1f}",
                        f"{c.impact_location:.3f}" + ("*" if c.at_window_edge else ""),
                        f"{c.cop:.3f}", f"{c.sweet_spot:.3f}",
                        fmt.quantity(c.exit_speed, "speed", 2), fmt.plain(c.cor, 4),
-                       fmt.metric_value(c.bpf, "bpf"), fmt.metric_value(c.besr, "besr"),
-                       fmt.metric_value(c.bbcor, "bbcor"),
-                       fmt.metric_value(c.collision_efficiency, "collision-efficiency")])
+                       *[fmt.metric_value(getattr(c, field), name) for name, field, _ in shown]])
     table(t)
     if result.uncertainty is not None:
         from batcert.reports.uncertainty_view import summary_sentence

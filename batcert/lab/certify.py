@@ -22,14 +22,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from batcert.lab.session import LabSession, reduce_session
+from batcert.methods.metrics import METRICS
 from batcert.methods.reduction import HitReduction
 from batcert.specs.protocol import ProtocolSpec
 
 OUTLIER_Z = 3.5  # robust z above which a hit is flagged (Iglewicz & Hoaglin 1993)
 COVERAGE = 0.95  # coverage probability of the expanded uncertainty
 MC_DRAWS = 200_000  # Monte Carlo draws (JCGM 101)
-LAB_METRICS = {"bbcor": "bbcor", "besr": "besr", "bpf": "bpf",
-               "collision-efficiency": "collision_efficiency"}
+# the metrics a stationary-bat lab test measures (the metric registry's lab entries), by name
+LAB_METRICS = {m.name: m.field for m in METRICS.values() if m.lab}
 
 
 @dataclass(frozen=True)

@@ -62,38 +62,50 @@ def impact_metrics(impact_location, pitch_speed, bat_angular_speed, exit_speed,
 
 @dataclass(frozen=True)
 class Metric:
-    """One performance metric: name in files and JSON, display word, docs, how to read it."""
+    """One performance metric: name in files and JSON, display word, docs, where it is kept.
+
+    ``field`` names the metric's array in :class:`ImpactMetrics` (computed in
+    :func:`impact_metrics`), its number in a run's per-condition result
+    (:class:`batcert.results.run.ConditionResult`, filled from this registry) and, where a
+    stationary-bat lab test measures it (``lab``), in a lab's reduction of its hits
+    (:class:`batcert.methods.reduction.HitReduction`). Views list the metrics from here."""
 
     name: str
     display: str  # as shown in reports and the terminal
     doc: str
-    value: Callable[[ImpactMetrics], np.ndarray]
+    field: str
     unit: str = ""  # SI unit of the value; "" for dimensionless metrics
     digits: int = 4  # decimals shown for the SI value (exit speed: m/s)
     # what docs/validation.md measures of the model's offset from bench results for this
     # metric, stated on every predicted result ("" where no published level anchors it)
     model_offset: str = ""
+    column: str = ""  # short table heading (default: display)
+    lab: bool = False  # a stationary-bat lab test measures it (batcert reduce certifies it)
+
+    def value(self, m: ImpactMetrics) -> np.ndarray:
+        """The metric of every impact of ``m``."""
+        return getattr(m, self.field)
 
 
 METRICS: dict[str, Metric] = {m.name: m for m in (
-    Metric("exit-speed", "exit speed", "Ball speed after impact, v_b.", lambda m: m.exit_speed,
+    Metric("exit-speed", "exit speed", "Ball speed after impact, v_b.", "exit_speed",
            "m/s", 2),
     Metric("besr", "BESR", "NCAA ball exit speed ratio, Smith 2001 Eq. 2 (assumes w2 = w1).",
-           lambda m: m.besr, model_offset=(
+           "besr", model_offset=(
                "the model puts a 34 in ash bat at BESR 0.762 (101.6 mph) where the 97 mph cap "
                "(0.728) was set from such bats: about +0.03 for wood, and alloy bats 0.04 above "
-               "ash (docs/validation.md, section 3)")),
+               "ash (docs/validation.md, section 3)"), lab=True),
     Metric("bpf", "BPF", "Bat performance factor e / e_b, Smith 2001 Eq. 5 (w2 from Eq. 1).",
-           lambda m: m.bpf),
+           "bpf", lab=True),
     Metric("bbcor", "BBCOR", "Ball-bat COR from the collision efficiency, e_A (1 + k) + k "
-           "(ASTM F2219, NCAA).", lambda m: m.bbcor, model_offset=(
+           "(ASTM F2219, NCAA).", "bbcor", model_offset=(
                "the model puts wood bats 0.04-0.05 above measured wood BBCOR (NCAA's best "
                "wood is just below 0.50) and typical alloy bats a further 0.06-0.07 above "
                "wood, where certified alloy bats measure at wood level (docs/validation.md, "
-               "sections 2 and 3)")),
+               "sections 2 and 3)"), lab=True),
     Metric("collision-efficiency", "collision efficiency e_A",
-           "e_A = (v_b - v_bat) / (v_pitch + v_bat) (ASTM F2219).",
-           lambda m: m.collision_efficiency),
+           "e_A = (v_b - v_bat) / (v_pitch + v_bat) (ASTM F2219).", "collision_efficiency",
+           column="e_A", lab=True),
 )}
 
 

@@ -57,6 +57,13 @@ def metric_name(metric: str) -> str:
     return word[:1].upper() + word[1:]
 
 
+def condition_metrics() -> list[tuple[str, str, str]]:
+    """The dimensionless metrics a run's condition shows, in registry order: ``(name, field,
+    column heading)`` (the exit speed is shown as a speed of its own)."""
+    from batcert.methods.metrics import METRICS
+    return [(m.name, m.field, m.column or m.display) for m in METRICS.values() if not m.unit]
+
+
 def rule_word(rule: str) -> str:
     """The impact-location rule's display words ("centre of percussion")."""
     from batcert.methods.rules import IMPACT_RULES

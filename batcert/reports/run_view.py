@@ -92,13 +92,13 @@ def conditions_table(result: RunResult) -> Table:
 
 
 def metrics_table(result: RunResult) -> Table:
-    t = Table(["Condition", "COR e", "Ball COR e_b", "BPF", "BESR", "BBCOR", "e_A",
-               f"Metric: {fmt.metric_name(result.metric)}"], numeric=[False] + [True] * 7)
+    shown = fmt.condition_metrics()
+    t = Table(["Condition", "COR e", "Ball COR e_b", *[heading for _, _, heading in shown],
+               f"Metric: {fmt.metric_name(result.metric)}"],
+              numeric=[False] + [True] * (3 + len(shown)))
     for c in result.conditions:
         t.rows.append([c.name, fmt.plain(c.cor, 4), fmt.plain(c.ball_cor, 4)]
-                      + [fmt.metric_value(v, m) for v, m in (
-                          (c.bpf, "bpf"), (c.besr, "besr"), (c.bbcor, "bbcor"),
-                          (c.collision_efficiency, "collision-efficiency"))]
+                      + [fmt.metric_value(getattr(c, field), name) for name, field, _ in shown]
                       + [fmt.metric_value(c.metric_value, result.metric)])
     return t
 

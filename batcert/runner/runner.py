@@ -111,13 +111,13 @@ def _condition_results(conds: list[Condition], choice: Choice, search: Search,
         if c.relative_speed is not None:
             rigid_ss = np.nan  # Eq. 7 assumes fixed speeds; matched conditions vary w1 with r
         f = {k: float(np.asarray(v)[i, 0]) for k, v in vars(final).items()}
+        metrics = {m.field: f[m.field] for m in METRICS.values()}  # every registered metric
         out.append(ConditionResult(
             name=c.name, setup=c.setup, pitch_speed=f["pitch_speed"],
             bat_angular_speed=f["bat_angular_speed"], relative_speed=f["relative_speed"],
-            impact_location=float(choice.location[i]), exit_speed=f["exit_speed"],
+            impact_location=float(choice.location[i]),
             bat_angular_speed_after=f["bat_angular_speed_after"], cor=f["cor"],
-            ball_cor=f["ball_cor"], bpf=f["bpf"], besr=f["besr"], bbcor=f["bbcor"],
-            collision_efficiency=f["collision_efficiency"], metric_value=float(values[i]),
+            ball_cor=f["ball_cor"], **metrics, metric_value=float(values[i]),
             cop=mp.cop, sweet_spot=float(search.peaks.sweet_spot[i]),
             rigid_sweet_spot=None if not np.isfinite(rigid_ss) else float(rigid_ss),
             at_window_edge=bool(choice.at_edge[i]),

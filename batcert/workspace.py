@@ -142,7 +142,11 @@ def _array_digest(a: np.ndarray) -> bytes:
         return hit[1]
     digest = hashlib.sha256(np.ascontiguousarray(a).tobytes()).digest()
     key = id(a)
-    _DIGESTS[key] = (weakref.ref(a, lambda _, key=key: _DIGESTS.pop(key, None)), digest)
+
+    def forget(_: weakref.ref) -> None:  # the array is gone: its id may be another's next
+        _DIGESTS.pop(key, None)
+
+    _DIGESTS[key] = (weakref.ref(a, forget), digest)
     return digest
 
 

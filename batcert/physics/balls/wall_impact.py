@@ -87,19 +87,39 @@ def rigid_wall_impact(speed, mass, k1, alpha, e0, fraction: float = 0.99) -> Rig
     rebound = np.sqrt(2.0 * k1 * um ** (1.0 + alpha) / (mass * pr))
     t_comp = um / v * _quarter_time(pc, 0.0)
     t_rest = um / rebound * _quarter_time(pr, 0.0)
-    # impulse fraction f delivered: ball velocity (+ toward the wall) is v (1 - f (1 + e0))
     lo, hi = 0.5 * (1.0 - fraction), 0.5 * (1.0 + fraction)
-    cor = rebound / v
+    branches = _Branches(v, rebound / v, um, rebound, t_comp, pc, pr)
+    return RigidWallImpact(speed=v, e0=e0, cor=branches.cor, max_compression=um,
+                           peak_force=k1 * um**alpha, compression_time=t_comp,
+                           contact_time=t_comp + t_rest,
+                           collision_time=branches.time_at(hi) - branches.time_at(lo),
+                           fraction=fraction)
 
-    def time_at(f):
+
+@dataclass(frozen=True)
+class _Branches:
+    """The two branches of a rigid-wall impact (:func:`rigid_wall_impact`): compression from
+    ``speed`` [m/s] to rest at ``max_compression`` [m] in ``compression_time`` [s], restitution
+    from it to separation at ``rebound`` = ``cor`` ``speed`` [m/s]; ``pc = 1 + alpha`` and
+    ``pr = 1 + beta`` [-], the exponents of ``v(u)`` on each."""
+
+    speed: np.ndarray
+    cor: np.ndarray
+    max_compression: np.ndarray
+    rebound: np.ndarray
+    compression_time: np.ndarray
+    pc: float
+    pr: np.ndarray
+
+    def time_at(self, f):
+        """Time from contact start [s] at which the fraction ``f`` [-] of the impulse
+        ``m v (1 + cor)`` has been delivered: the ball's velocity (+ toward the wall) is then
+        ``v (1 - f (1 + cor))``, which fixes its compression on one branch or the other."""
+        v, cor, um, pc, pr = self.speed, self.cor, self.max_compression, self.pc, self.pr
         vel = 1.0 - f * (1.0 + cor)  # / v; > 0 still compressing
         comp = vel > 0
         s_c = np.clip(1.0 - np.where(comp, vel, 0.0) ** 2, 0.0, 1.0) ** (1.0 / pc)
         s_r = np.clip(1.0 - np.where(comp, 0.0, -vel / cor) ** 2, 0.0, 1.0) ** (1.0 / pr)
+        t_comp = self.compression_time
         return np.where(comp, t_comp - um / v * _quarter_time(pc, s_c),
-                        t_comp + um / rebound * _quarter_time(pr, s_r))
-
-    return RigidWallImpact(speed=v, e0=e0, cor=cor, max_compression=um,
-                           peak_force=k1 * um**alpha, compression_time=t_comp,
-                           contact_time=t_comp + t_rest,
-                           collision_time=time_at(hi) - time_at(lo), fraction=fraction)
+                        t_comp + um / self.rebound * _quarter_time(pr, s_r))

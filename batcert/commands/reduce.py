@@ -76,7 +76,7 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
     from pathlib import Path
 
     from batcert.errors import UsageProblem
-    from batcert.specs.hits import session_for_hits
+    from batcert.specs.session import session_for_hits
     pin = load_protocol_any(protocol)
     p = pin.protocol
     if Path(session_path).suffix.lower() == ".csv":
@@ -150,8 +150,8 @@ def calibrated_bat_text(result: LabResult, session_path: str) -> str:
         raise ValueError("no barrel calibration: the bat is solid, the engine is not flexible, "
                          "nothing was certified, or no barrel stiffness in x0.25-x4 meets the "
                          "measurement")
-    from batcert.specs.hits import load_session
     from batcert.specs.resolve import resolve
+    from batcert.specs.session import load_session
     spec = load_session(session_path)
     path = resolve("bat", spec.bat, relative_to=Path(spec.path))
     fit = result.barrel_fits[0]

@@ -96,7 +96,7 @@ def _session_inputs(session: str, bat: str | None) -> list[Path]:
             if bat is not None:
                 paths.append(Path(resolve("bat", bat)))
         else:
-            from batcert.specs.hits import load_session
+            from batcert.specs.session import load_session
             spec = load_session(session)
             here = Path(session)
             paths.append(here.parent / spec.hits)

@@ -7,12 +7,13 @@ import math
 
 import numpy as np
 
-from batcert.commands.inputs import load_protocol_any
-from batcert.lab.certify import DECISION_RULES, MC_DRAWS, certify, guard_band
-from batcert.lab.session import load_lab_session
+from batcert.commands.inputs import ProtocolInputs, load_protocol_any
+from batcert.lab.certify import DECISION_RULES, MC_DRAWS, Certified, certify, guard_band
+from batcert.lab.session import LabSession, load_lab_session
 from batcert.results.lab import LabHit, LabLocation, LabResult
 from batcert.results.serialise import utc_now
 from batcert.runner.runner import decide, identification
+from batcert.specs.protocol import ProtocolSpec
 from batcert.specs.resolve import display_path
 from batcert.version import __version__
 
@@ -73,32 +74,64 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
     """Load, reduce, certify and decide; and the model's prediction of the same test.
     ``session_path`` is a session YAML, or a bare hits CSV with ``bat`` (then the protocol
     gives the ball and the pivot)."""
+    pin = load_protocol_any(protocol)
+    p = pin.protocol
+    session = _session(session_path, pin, bat)
+    limit = p.limit.max + p.limit.tolerance if p.limit else None
+    red, c = certify(session, p, limit)
+    barrel_fits, barrel_warnings = _barrel_fits(session, p, pin.ball, engine, c)
+    margin, verdict = decide(c.value, p.limit, guard_band(decision_rule, c.expanded))
+    h = session.hits
+    spec, bat_spec = session.spec, session.built.spec
+    location_from_tip = c.scan[c.location].from_tip if c.location is not None else None
+    return LabResult(
+        bat_identification=identification(bat_spec),
+        session=spec.name, session_path=display_path(spec.path), bat=bat_spec.name,
+        protocol=p.id, protocol_title=p.title, metric=p.metric, statement="measured",
+        limit=p.limit.max if p.limit else None, tolerance=p.limit.tolerance if p.limit else 0.0,
+        decision_rule=decision_rule, decision_rule_text=DECISION_RULES[decision_rule],
+        value=c.value, location_from_tip=location_from_tip,
+        hits_used=[float(h.hit[i]) for i in c.used], u_a=c.u_a, u_b=c.u_b, u_c=c.u_c,
+        dof=c.dof if math.isfinite(c.dof) else None, coverage_factor=c.coverage_factor,
+        expanded=c.expanded, mc_std=c.mc_std,
+        mc_interval=list(c.mc_interval) if c.mc_interval else None, mc_draws=MC_DRAWS,
+        conformance_probability=c.conformance, margin=margin, verdict=verdict,
+        moi_pivot=session.moi_pivot, moi_source=session.moi_source,
+        ball_mass=session.ball.model.mass, pivot=spec.pivot, scan=_scan(session, c),
+        hits=_hits(session, red, c), warnings=c.warnings + barrel_warnings,
+        inputs=_inputs(session, p), batcert_version=__version__, created=utc_now(),
+        lab={k: v for k, v in (spec.lab or {}).items() if v is not None},
+        barrel_fits=barrel_fits,
+        model=_model(session, p, pin.ball, engine, location_from_tip, c.value))
+
+
+def _session(session_path: str, pin: ProtocolInputs, bat: str | None) -> LabSession:
+    """The lab session of a session YAML, or of a bare hits CSV with ``bat`` (the protocol's
+    ball and pivot)."""
     from pathlib import Path
 
     from batcert.errors import UsageProblem
-    from batcert.specs.hits import session_for_hits
-    pin = load_protocol_any(protocol)
-    p = pin.protocol
+    from batcert.specs.session import session_for_hits
     if Path(session_path).suffix.lower() == ".csv":
         if bat is None:
             raise UsageProblem("a bare hits CSV needs --bat (or give a session YAML that names "
                                "the bat, the ball lot and the pivot)")
         from batcert.commands.inputs import load_bat_any
         bat_path = str(load_bat_any(bat).path)  # a clear error for an unknown bat, now
-        spec = session_for_hits(session_path, bat_path, str(pin.ball.path), p.pivot)
-        session = load_lab_session(session_path, spec)
-    else:
-        if bat is not None:
-            raise UsageProblem("--bat is for a bare hits CSV; a session YAML names its bat")
-        session = load_lab_session(session_path)
-    limit = p.limit.max + p.limit.tolerance if p.limit else None
-    red, c = certify(session, p, limit)
-    barrel_fits, barrel_warnings = _barrel_fits(session, p, pin.ball, engine, c)
-    margin, verdict = decide(c.value, p.limit, guard_band(decision_rule, c.expanded))
+        spec = session_for_hits(session_path, bat_path, str(pin.ball.path), pin.protocol.pivot)
+        return load_lab_session(session_path, spec)
+    if bat is not None:
+        raise UsageProblem("--bat is for a bare hits CSV; a session YAML names its bat")
+    return load_lab_session(session_path)
+
+
+def _hits(session: LabSession, red, c: Certified) -> list[LabHit]:
+    """Every hit with its reduced values (``red``, :func:`certify`'s reduction), its validity
+    and use in the certified value (``c``)."""
     h = session.hits
     tip = session.built.model.length - session.spec.pivot
     used = set(c.used)
-    hits = [LabHit(float(h.hit[i]), h.ball[i], h.line[i], float(h.inbound_speed[i]),
+    return [LabHit(float(h.hit[i]), h.ball[i], h.line[i], float(h.inbound_speed[i]),
                    float(h.rebound_speed[i]), float(session.impact_location[i]),
                    float(tip - session.impact_location[i]),
                    float(red.collision_efficiency[i]), float(red.recoil_factor[i]),
@@ -106,37 +139,25 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
                    float(red.bat_angular_speed_after[i]), _none(red.measured_cor[i]),
                    not c.reasons[i], list(c.reasons[i]), i in used)
             for i in range(len(h.line))]
-    scan = [LabLocation(loc.from_tip, loc.position, [float(h.hit[i]) for i in loc.hits],
+
+
+def _scan(session: LabSession, c: Certified) -> list[LabLocation]:
+    """The locations of the scan with their hits (as numbered in the CSV)."""
+    h = session.hits
+    return [LabLocation(loc.from_tip, loc.position, [float(h.hit[i]) for i in loc.hits],
                         loc.n_valid, loc.mean, loc.std) for loc in c.scan]
-    spec, bat = session.spec, session.built.spec
-    inputs = [{"role": "session", "name": spec.name, "path": display_path(spec.path),
-               "sha256": spec.source.sha256},
-              {"role": "hits", "name": spec.hits, "path": display_path(h.path), "sha256": h.sha256},
-              {"role": "bat", "name": bat.name, "path": display_path(bat.path), "sha256": bat.sha256},
-              {"role": "ball", "name": session.ball.name, "path": display_path(session.ball.path),
-               "sha256": session.ball.sha256},
-              {"role": "protocol", "name": p.id, "path": display_path(p.path), "sha256": p.sha256}]
-    return LabResult(
-        bat_identification=identification(bat),
-        session=spec.name, session_path=display_path(spec.path), bat=bat.name, protocol=p.id,
-        protocol_title=p.title, metric=p.metric, statement="measured",
-        limit=p.limit.max if p.limit else None, tolerance=p.limit.tolerance if p.limit else 0.0,
-        decision_rule=decision_rule, decision_rule_text=DECISION_RULES[decision_rule],
-        value=c.value,
-        location_from_tip=c.scan[c.location].from_tip if c.location is not None else None,
-        hits_used=[float(h.hit[i]) for i in c.used], u_a=c.u_a, u_b=c.u_b, u_c=c.u_c,
-        dof=c.dof if math.isfinite(c.dof) else None, coverage_factor=c.coverage_factor,
-        expanded=c.expanded, mc_std=c.mc_std,
-        mc_interval=list(c.mc_interval) if c.mc_interval else None, mc_draws=MC_DRAWS,
-        conformance_probability=c.conformance, margin=margin, verdict=verdict,
-        moi_pivot=session.moi_pivot, moi_source=session.moi_source,
-        ball_mass=session.ball.model.mass, pivot=spec.pivot, scan=scan, hits=hits,
-        warnings=c.warnings + barrel_warnings, inputs=inputs, batcert_version=__version__,
-        created=utc_now(),
-        lab={k: v for k, v in (spec.lab or {}).items() if v is not None},
-        barrel_fits=barrel_fits,
-        model=_model(session, p, pin.ball, engine,
-                     c.scan[c.location].from_tip if c.location is not None else None, c.value))
+
+
+def _inputs(session: LabSession, p: ProtocolSpec) -> list[dict[str, str]]:
+    """The files the certificate rests on: session, hits, bat, ball and protocol, hashed."""
+    spec, h, bat = session.spec, session.hits, session.built.spec
+    return [{"role": "session", "name": spec.name, "path": display_path(spec.path),
+             "sha256": spec.source.sha256},
+            {"role": "hits", "name": spec.hits, "path": display_path(h.path), "sha256": h.sha256},
+            {"role": "bat", "name": bat.name, "path": display_path(bat.path), "sha256": bat.sha256},
+            {"role": "ball", "name": session.ball.name, "path": display_path(session.ball.path),
+             "sha256": session.ball.sha256},
+            {"role": "protocol", "name": p.id, "path": display_path(p.path), "sha256": p.sha256}]
 
 
 def calibrated_bat_text(result: LabResult, session_path: str) -> str:
@@ -150,8 +171,8 @@ def calibrated_bat_text(result: LabResult, session_path: str) -> str:
         raise ValueError("no barrel calibration: the bat is solid, the engine is not flexible, "
                          "nothing was certified, or no barrel stiffness in x0.25-x4 meets the "
                          "measurement")
-    from batcert.specs.hits import load_session
     from batcert.specs.resolve import resolve
+    from batcert.specs.session import load_session
     spec = load_session(session_path)
     path = resolve("bat", spec.bat, relative_to=Path(spec.path))
     fit = result.barrel_fits[0]

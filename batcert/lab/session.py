@@ -13,8 +13,9 @@ from batcert.model.build import BuiltBat, build_bat
 from batcert.model.mass import mass_properties
 from batcert.specs.ball import BallSpec, load_ball
 from batcert.specs.bat import load_bat
-from batcert.specs.hits import Hits, SessionSpec, load_hits, load_session
+from batcert.specs.hits import Hits, load_hits
 from batcert.specs.resolve import NotFound, resolve
+from batcert.specs.session import SessionSpec, load_session
 
 
 @dataclass(frozen=True)

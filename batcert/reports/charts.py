@@ -57,14 +57,7 @@ def line_chart(
     data and the y axis is padded out to round ticks. ``point_legend`` names the circles drawn
     for ``points`` in the legend (left out when empty).
     """
-    xs = finite([v for s in series for v in s.x]) + finite([m.x for m in vlines])
-    ys = finite([v for s in series for v in s.y]) + finite([p.y for p in points]) \
-        + finite([y for y, _ in hlines])
-    x_lo, x_hi = x_range or ((min(xs), max(xs)) if xs else (0.0, 1.0))
-    if x_lo == x_hi:
-        x_lo, x_hi = x_lo - 0.5, x_hi + 0.5
-    y_lo, y_hi = y_range or (nice_domain(min(ys), max(ys)) if ys else (0.0, 1.0))
-
+    (x_lo, x_hi), (y_lo, y_hi) = _line_domains(series, vlines, points, hlines, x_range, y_range)
     left, right = 66.0, (66.0 if y2 else 18.0)
     plot_w = width - left - right
     legend_names = [s.name for s in series] + ([point_legend] if point_legend and points else [])
@@ -93,19 +86,46 @@ def line_chart(
              left, title_h, plot_w)
     axes(c, left, top, plot_w, plot_h, (x_lo, x_hi), (y_lo, y_hi), x_label, y_label, y2,
          x2=x2)
+    _draw_markers(c, vlines, label_rows, hlines, (x_lo, x_hi), (y_lo, y_hi),
+                  (left, top, plot_w, plot_h), px, py)
+    _draw_lines(c, series, points, (x_lo, x_hi), (y_lo, y_hi), px, py)
+    return c.done()
 
+
+def _line_domains(series: Sequence[Series], vlines: Sequence[VLine], points: Sequence[Point],
+                  hlines: Sequence[tuple[float, str]], x_range: tuple[float, float] | None,
+                  y_range: tuple[float, float] | None
+                  ) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The x and y ranges of a line chart: those given, else the x range of the data and
+    markers (widened by 1 when it is a single value) and the y range padded to round ticks."""
+    xs = finite([v for s in series for v in s.x]) + finite([m.x for m in vlines])
+    ys = finite([v for s in series for v in s.y]) + finite([p.y for p in points]) \
+        + finite([y for y, _ in hlines])
+    x_lo, x_hi = x_range or ((min(xs), max(xs)) if xs else (0.0, 1.0))
+    if x_lo == x_hi:
+        x_lo, x_hi = x_lo - 0.5, x_hi + 0.5
+    y_lo, y_hi = y_range or (nice_domain(min(ys), max(ys)) if ys else (0.0, 1.0))
+    return (x_lo, x_hi), (y_lo, y_hi)
+
+
+def _draw_markers(c: Canvas, vlines: Sequence[VLine], label_rows: list[tuple[int, str]],
+                  hlines: Sequence[tuple[float, str]], xr: tuple[float, float],
+                  yr: tuple[float, float], box: tuple[float, float, float, float],
+                  px, py) -> None:
+    """The labelled vertical markers (their labels in the rows of ``label_rows``, above the
+    plot) and the labelled horizontal lines (e.g. a protocol's limit) within the ranges."""
+    left, top, plot_w, plot_h = box
+    n_label_rows = 1 + max((r for r, _ in label_rows), default=-1)
     for (row, anchor), m in zip(label_rows, vlines, strict=True):
-        if x_lo <= m.x <= x_hi:
+        if xr[0] <= m.x <= xr[1]:
             x = px(m.x)
             c.line(x, top, x, top + plot_h, stroke=m.color, width=1.2, dasharray="4 3")
             c.text(x, top - 4 - 14 * (n_label_rows - 1 - row), m.label, size=11, anchor=anchor,
                    fill=m.color)
-    for y, label in hlines:  # e.g. a protocol's limit
-        if math.isfinite(y) and y_lo <= y <= y_hi:
+    for y, label in hlines:
+        if math.isfinite(y) and yr[0] <= y <= yr[1]:
             c.line(left, py(y), left + plot_w, py(y), stroke=INK, width=1.5, dasharray="8 4")
             c.text(left + plot_w - 4, py(y) - 5, label, size=11, anchor="end")
-    _draw_lines(c, series, points, (x_lo, x_hi), (y_lo, y_hi), px, py)
-    return c.done()
 
 
 def _draw_lines(c: Canvas, series: Sequence[Series], points: Sequence[Point],

@@ -54,27 +54,54 @@ def lab_figures(result: LabResult) -> list[LineFigure]:
 
 
 def lab_view(result: LabResult, charts: bool = True) -> dict[str, Any]:
+    """Everything the lab certificate shows, formatted; the templates only arrange it."""
     from markupsafe import Markup
 
     from batcert.reports.figure import svg_of
     verdict = badge(VERDICT_BADGES, result.verdict) if result.verdict else \
         Badge("NO VERDICT", "warn")
     word = fmt.metric_word(result.metric)
+    figs = lab_figures(result)
+    return {"result": result, "title": f"Lab certificate: {result.bat}, {result.protocol}",
+            "page_title": f"Lab certificate: {result.bat} \u2014 batcert", "badge": verdict,
+            "sentence": _sentence(result, word), "facts": _lab_facts(result) + _facts(result),
+            "budget": _budget(result), "scan": _scan(result, word), "hits": _hits(result),
+            "warnings": result.warnings, "inputs": result.inputs,
+            "figures": [{"svg": Markup(svg_of(f)) if charts else "", "caption": f.caption,
+                         "title": f.title} for f in figs],
+            "date": fmt.created(result.created),
+            "print_header": " \u2014 ".join(x for x in (
+                result.lab.get("certificate_number"), result.bat, result.protocol,
+                (result.verdict or "no verdict").upper()) if x)}
+
+
+def _sentence(result: LabResult, word: str) -> str:
+    """The certificate in one sentence: the value, its interval, the limit and the verdict."""
     if result.value is None:
-        sentence = "No value can be certified: " + "; ".join(result.warnings)
-    else:
-        sentence = (f"Measured {word} {result.value:.4f} \u00b1 {result.expanded:.4f} (expanded "
-                    f"uncertainty, 95 % coverage, k = {result.coverage_factor:.2f})"
-                    + (f" against the limit {result.limit:g}" if result.limit is not None else "")
-                    + (f": {result.verdict.upper()} under {result.decision_rule} acceptance"
-                       if result.verdict else "") + ".")
-    lab_words = {"laboratory": "Laboratory", "accreditation": "Accreditation",
-                 "certificate_number": "Certificate number", "customer": "Customer",
-                 "bat_serial": "Bat serial number", "operator": "Operator",
-                 "test_date": "Test date", "issue_date": "Issue date", "signatures": "Approved by"}
-    lab = [(word, "; ".join(result.lab[k]) if isinstance(result.lab[k], list) else
-            str(result.lab[k])) for k, word in lab_words.items() if k in result.lab]
-    facts = lab + [
+        return "No value can be certified: " + "; ".join(result.warnings)
+    return (f"Measured {word} {result.value:.4f} \u00b1 {result.expanded:.4f} (expanded "
+            f"uncertainty, 95 % coverage, k = {result.coverage_factor:.2f})"
+            + (f" against the limit {result.limit:g}" if result.limit is not None else "")
+            + (f": {result.verdict.upper()} under {result.decision_rule} acceptance"
+               if result.verdict else "") + ".")
+
+
+LAB_WORDS = {"laboratory": "Laboratory", "accreditation": "Accreditation",
+             "certificate_number": "Certificate number", "customer": "Customer",
+             "bat_serial": "Bat serial number", "operator": "Operator",
+             "test_date": "Test date", "issue_date": "Issue date", "signatures": "Approved by"}
+
+
+def _lab_facts(result: LabResult) -> list[tuple[str, str]]:
+    """The session's ``lab`` block, in the certificate's words and order."""
+    return [(word, "; ".join(result.lab[k]) if isinstance(result.lab[k], list) else
+             str(result.lab[k])) for k, word in LAB_WORDS.items() if k in result.lab]
+
+
+def _facts(result: LabResult) -> list[tuple[str, str]]:
+    """The test: session, bat, protocol, decision rule, certified location, the model beside
+    the measurement, the barrel calibration, the bat's MOI and the ball's mass."""
+    return [
         ("Session", f"{result.session} ({result.session_path})"), ("Bat", result.bat),
         *([("Bat identification", fmt.identification(result.bat_identification))]
           if result.bat_identification else []),
@@ -89,41 +116,65 @@ def lab_view(result: LabResult, charts: bool = True) -> dict[str, Any]:
          "is within the limit, Monte Carlo)"),
         ("Margin", fmt.DASH if result.margin is None else f"{result.margin:+.4f} "
          f"({result.decision_rule} acceptance)"),
-        ("Model (same bat, ball and test)", fmt.DASH if not result.model else
-         f"{result.model['engine']} engine: {_v(result.model['at_certified_location'])} at the "
-         f"certified location, measured minus model {_v(result.model['difference'])}; the "
-         f"model's own result {_v(result.model['value'])} at "
-         f"{result.model['location_from_tip'] / INCH:.2f} in from the tip"
-         + ("" if result.model.get("barrel_calibrated") is not False else
-            " (the model's barrel is not calibrated by a measurement)")),
-        ("Barrel calibrated from the hits", fmt.DASH if not result.barrel_fits else
-         "; ".join(f"stiffness x{f['scale']:.3f} \u00b1 {f['u_scale']:.3f} (equivalent hoop "
-                   f"frequency {f['hoop_frequency']:.0f} \u00b1 {f['u_hoop_frequency']:.0f} Hz)"
-                   for f in result.barrel_fits)
-         + ": the model then meets the measured value at the certified location (one point, "
-         "not the whole scan); --write-calibration writes it into a copy of the bat file"),
+        ("Model (same bat, ball and test)", _model_fact(result)),
+        ("Barrel calibrated from the hits", _barrel_fact(result)),
         ("Bat MOI about the pivot", f"{result.moi_pivot:.6f} kg m\u00b2 ({result.moi_source}); "
          f"pivot {result.pivot / INCH:.2f} in from the knob"),
         ("Ball mass", f"{result.ball_mass * 1000:.2f} g"),
         ("Date", fmt.created(result.created)), ("batcert version", result.batcert_version)]
-    budget = Table(["component", "standard uncertainty", "degrees of freedom"],
-                   [["type A: scatter of the hits averaged", _v(result.u_a, 5),
-                     f"{len(result.hits_used) - 1}"]]
-                   + [[f"type B: {k}", _v(v, 5), "\u221e"] for k, v in result.u_b.items()]
-                   + [["combined u_c", _v(result.u_c, 5),
-                       "\u221e" if result.dof is None else f"{result.dof:.1f}"],
-                      [f"expanded U = {result.coverage_factor:.3f} u_c (95 %)",
-                       _v(result.expanded, 5), ""],
-                      [f"Monte Carlo (JCGM 101, {result.mc_draws} draws): standard deviation",
-                       _v(result.mc_std, 5), ""],
-                      ["Monte Carlo 95 % interval", fmt.DASH if not result.mc_interval else
-                       f"{result.mc_interval[0]:.4f} to {result.mc_interval[1]:.4f}", ""]],
-                   [False, True, True])
-    scan = Table(["from tip [in]", "hits", "valid", f"mean {word}", "std"],
+
+
+def _model_fact(result: LabResult) -> str:
+    """The model's prediction of the same test beside the measured value."""
+    if not result.model:
+        return fmt.DASH
+    return (f"{result.model['engine']} engine: {_v(result.model['at_certified_location'])} at "
+            f"the certified location, measured minus model {_v(result.model['difference'])}; "
+            f"the model's own result {_v(result.model['value'])} at "
+            f"{result.model['location_from_tip'] / INCH:.2f} in from the tip"
+            + ("" if result.model.get("barrel_calibrated") is not False else
+               " (the model's barrel is not calibrated by a measurement)"))
+
+
+def _barrel_fact(result: LabResult) -> str:
+    """The barrel stiffnesses calibrated from the hits."""
+    if not result.barrel_fits:
+        return fmt.DASH
+    return ("; ".join(f"stiffness x{f['scale']:.3f} \u00b1 {f['u_scale']:.3f} (equivalent hoop "
+                      f"frequency {f['hoop_frequency']:.0f} \u00b1 {f['u_hoop_frequency']:.0f} "
+                      "Hz)" for f in result.barrel_fits)
+            + ": the model then meets the measured value at the certified location (one point, "
+            "not the whole scan); --write-calibration writes it into a copy of the bat file")
+
+
+def _budget(result: LabResult) -> Table:
+    """The uncertainty budget: type A, each type B, combined, expanded, the Monte Carlo."""
+    return Table(["component", "standard uncertainty", "degrees of freedom"],
+                 [["type A: scatter of the hits averaged", _v(result.u_a, 5),
+                   f"{len(result.hits_used) - 1}"]]
+                 + [[f"type B: {k}", _v(v, 5), "\u221e"] for k, v in result.u_b.items()]
+                 + [["combined u_c", _v(result.u_c, 5),
+                     "\u221e" if result.dof is None else f"{result.dof:.1f}"],
+                    [f"expanded U = {result.coverage_factor:.3f} u_c (95 %)",
+                     _v(result.expanded, 5), ""],
+                    [f"Monte Carlo (JCGM 101, {result.mc_draws} draws): standard deviation",
+                     _v(result.mc_std, 5), ""],
+                    ["Monte Carlo 95 % interval", fmt.DASH if not result.mc_interval else
+                     f"{result.mc_interval[0]:.4f} to {result.mc_interval[1]:.4f}", ""]],
+                 [False, True, True])
+
+
+def _scan(result: LabResult, word: str) -> Table:
+    """The location scan: each location's hits, valid hits, mean and standard deviation."""
+    return Table(["from tip [in]", "hits", "valid", f"mean {word}", "std"],
                  [[f"{loc.from_tip / INCH:.2f}", ", ".join(f"{h:g}" for h in loc.hits),
                    str(loc.valid_hits), _v(loc.mean), _v(loc.std)] for loc in result.scan],
                  [True, False, True, True, True])
-    hits = Table(["hit", "ball", "line", "v_i [m/s]", "v_r [m/s]", "from tip [in]", "e_A", "k",
+
+
+def _hits(result: LabResult) -> Table:
+    """Every hit: its measurements, its reduced values, its validity and use."""
+    return Table(["hit", "ball", "line", "v_i [m/s]", "v_r [m/s]", "from tip [in]", "e_A", "k",
                   "BBCOR", "BESR", "BPF", "valid", "used", "reasons"],
                  [[f"{h.hit:g}", h.ball, str(h.line), f"{h.inbound_speed:.2f}",
                    f"{h.rebound_speed:.2f}", f"{h.from_tip / INCH:.3f}",
@@ -132,14 +183,3 @@ def lab_view(result: LabResult, charts: bool = True) -> dict[str, Any]:
                    "; ".join(h.reasons)] for h in result.hits],
                  [True, False, True, True, True, True, True, True, True, True, True, False,
                   False, False])
-    figs = lab_figures(result)
-    return {"result": result, "title": f"Lab certificate: {result.bat}, {result.protocol}",
-            "page_title": f"Lab certificate: {result.bat} \u2014 batcert", "badge": verdict,
-            "sentence": sentence, "facts": facts, "budget": budget, "scan": scan,
-            "hits": hits, "warnings": result.warnings, "inputs": result.inputs,
-            "figures": [{"svg": Markup(svg_of(f)) if charts else "", "caption": f.caption,
-                         "title": f.title} for f in figs],
-            "date": fmt.created(result.created),
-            "print_header": " \u2014 ".join(x for x in (
-                result.lab.get("certificate_number"), result.bat, result.protocol,
-                (result.verdict or "no verdict").upper()) if x)}

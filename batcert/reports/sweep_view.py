@@ -94,42 +94,71 @@ def _series(result: SweepResult, values: list[float | None], name: str,
 def sweep_figures(result: SweepResult) -> list[Figure]:
     """The protocol's metric, every metric per condition, the sweet spot and COP (with Eq. 7's
     rigid sweet spot where defined) and the mass properties, against the first parameter."""
+    figs: list[Figure] = [_metric_figure(result)]
+    figs += _condition_figures(result)
+    figs.append(_sweet_spot_figure(result))
+    if any(a.changes != "protocol" for a in result.axes):
+        figs += _mass_figures(result)
+    if result.design is not None:
+        figs.append(_margin_figure(result))
+    return figs
+
+
+def _metric_figure(result: SweepResult) -> LineFigure:
+    """The protocol's result against the first parameter, with the plausible barrel's range
+    (one axis), the limit and the nominal bat as measured."""
     first = result.axes[0]
-    x_label = axis_label(first)
     metric = fmt.metric_name(result.metric)
-    figs: list[Figure] = []
     limit = [] if result.limit is None else [(result.limit + result.tolerance,
                                               f"limit {result.limit + result.tolerance:g}")]
-    series = _series(result, result.series["value"], "nominal barrel"
-                     if any(v is not None for v in result.series["value_low"]) else "")
-    if any(v is not None for v in result.series["value_low"]) and len(result.axes) == 1:
+    ranged = any(v is not None for v in result.series["value_low"])
+    series = _series(result, result.series["value"], "nominal barrel" if ranged else "")
+    if ranged and len(result.axes) == 1:
         series += _series(result, result.series["value_low"], "plausible barrel: low")
         series += _series(result, result.series["value_high"], "plausible barrel: high")
-    nominal = []
-    line = 0  # the line the nominal bat belongs to: on a grid, the second axis's nominal value
-    if len(result.axes) == 2:
-        second = result.axes[1]
-        line = second.values.index(second.nominal) if second.nominal in second.values else -1
-    if result.nominal is not None and result.nominal.value is not None \
-            and first.nominal is not None and line >= 0:
-        nominal = [Point(_x(first, [first.nominal])[0], result.nominal.value, line,
-                         "as measured")]
-    figs.append(LineFigure(
-        "metric", f"{metric} ({result.aggregate}) against {words(first)}", x_label,
+    nominal = _nominal_point(result)
+    return LineFigure(
+        "metric", f"{metric} ({result.aggregate}) against {words(first)}", axis_label(first),
         f"{metric} [{'m/s' if result.metric == 'exit-speed' else '-'}]", series,
         caption=f"The protocol's result against {words(first)}"
         + ("; the dashed line is its limit" if limit else "")
         + ("; the circle is the nominal bat with its measurements" if nominal else "") + ".",
         hlines=limit, points=nominal, point_legend="nominal bat as measured" if nominal else "",
         vlines=[] if first.nominal is None else [VLine(_x(first, [first.nominal])[0],
-                                                        "nominal")]))
+                                                        "nominal")])
+
+
+def _nominal_point(result: SweepResult) -> list[Point]:
+    """The nominal bat as measured, on its line (on a grid, that of the second axis's nominal
+    value); none where it has no value or is off the figure's lines."""
+    first = result.axes[0]
+    line = 0
+    if len(result.axes) == 2:
+        second = result.axes[1]
+        line = second.values.index(second.nominal) if second.nominal in second.values else -1
+    if result.nominal is not None and result.nominal.value is not None \
+            and first.nominal is not None and line >= 0:
+        return [Point(_x(first, [first.nominal])[0], result.nominal.value, line, "as measured")]
+    return []
+
+
+def _condition_figures(result: SweepResult) -> list[Figure]:
+    """One figure per metric of :data:`METRIC_PLOTS`, a line per condition."""
+    first = result.axes[0]
+    named = len(result.conditions) > 1  # a condition's name only where there are several
+    figs: list[Figure] = []
     for key, (word, unit) in METRIC_PLOTS.items():
-        named = len(result.conditions) > 1  # a condition's name only where there are several
         lines = [s for c in result.conditions
                  for s in _series(result, c.series[key], c.name if named else "", word)]
-        figs.append(LineFigure(key.replace("_", "-"), f"{word} against {words(first)}", x_label,
-                               f"{word} [{unit}]", lines,
+        figs.append(LineFigure(key.replace("_", "-"), f"{word} against {words(first)}",
+                               axis_label(first), f"{word} [{unit}]", lines,
                                caption=f"{word} at the impact point of each condition."))
+    return figs
+
+
+def _sweet_spot_figure(result: SweepResult) -> LineFigure:
+    """The sweet spot, the COP and Eq. 7's rigid sweet spot of each condition."""
+    first = result.axes[0]
     spots = []
     for c in result.conditions:
         spots += _series(result, c.series["sweet_spot"], f"{c.name}: sweet spot")
@@ -137,26 +166,34 @@ def sweep_figures(result: SweepResult) -> list[Figure]:
         if c.rigid_applies:
             spots += _series(result, c.series["rigid_sweet_spot"],
                              f"{c.name}: rigid sweet spot (Eq. 7)")
-    figs.append(LineFigure("sweet-spot", f"Sweet spot and COP against {words(first)}", x_label,
-                           "distance from the pivot [m]", spots,
-                           caption="Sweet spot (maximum exit speed), centre of percussion "
-                           "(Eq. 4) and, where the speeds are fixed and the bat swings, the "
-                           "rigid-bat sweet spot (Smith 2001 Eq. 7)."))
-    if any(a.changes != "protocol" for a in result.axes):
-        figs.append(LineFigure("mass", f"Mass against {words(first)}", x_label, "mass [kg]",
-                               _series(result, result.series["mass"], "mass")))
-        figs.append(LineFigure("moi", f"MOI about the pivot against {words(first)}", x_label,
-                               "MOI [kg m²]", _series(result, result.series["moi_pivot"], "MOI")))
-    if result.design is not None:
-        margin = result.series["margin"]
-        roots = [VLine(_x(first, [r.value])[0], f"root {axis_value(first, r.value).si}")
-                 for r in result.design.roots]
-        figs.append(LineFigure("margin", f"Margin to the limit against {words(first)}", x_label,
-                               f"margin [{'m/s' if result.metric == 'exit-speed' else '-'}]",
-                               _series(result, margin, "margin"), hlines=[(0.0, "limit")],
-                               vlines=roots, caption="Margin = limit + tolerance - value; "
-                               "the protocol passes where it is at least zero."))
-    return figs
+    return LineFigure("sweet-spot", f"Sweet spot and COP against {words(first)}",
+                      axis_label(first), "distance from the pivot [m]", spots,
+                      caption="Sweet spot (maximum exit speed), centre of percussion "
+                      "(Eq. 4) and, where the speeds are fixed and the bat swings, the "
+                      "rigid-bat sweet spot (Smith 2001 Eq. 7).")
+
+
+def _mass_figures(result: SweepResult) -> list[Figure]:
+    """The bat's mass and MOI about the pivot."""
+    first = result.axes[0]
+    x_label = axis_label(first)
+    return [LineFigure("mass", f"Mass against {words(first)}", x_label, "mass [kg]",
+                       _series(result, result.series["mass"], "mass")),
+            LineFigure("moi", f"MOI about the pivot against {words(first)}", x_label,
+                       "MOI [kg m²]", _series(result, result.series["moi_pivot"], "MOI"))]
+
+
+def _margin_figure(result: SweepResult) -> LineFigure:
+    """A design's margin to the limit, with its roots."""
+    assert result.design is not None
+    first = result.axes[0]
+    roots = [VLine(_x(first, [r.value])[0], f"root {axis_value(first, r.value).si}")
+             for r in result.design.roots]
+    return LineFigure("margin", f"Margin to the limit against {words(first)}", axis_label(first),
+                      f"margin [{'m/s' if result.metric == 'exit-speed' else '-'}]",
+                      _series(result, result.series["margin"], "margin"), hlines=[(0.0, "limit")],
+                      vlines=roots, caption="Margin = limit + tolerance - value; "
+                      "the protocol passes where it is at least zero.")
 
 
 def _rows(result: SweepResult) -> list[int]:

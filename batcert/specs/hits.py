@@ -1,5 +1,5 @@
-"""Measured hit data: a session file (YAML: the bat, the ball lot, the pivot, the instruments)
-and its hits (CSV, one row per hit, units in the header). docs/lab-reduction.md documents both.
+"""Measured hit data: the hits CSV of a lab session (one row per hit, units in the header; the
+session file: :mod:`batcert.specs.session`). docs/lab-reduction.md documents both.
 
 A hits CSV::
 
@@ -25,76 +25,10 @@ from pathlib import Path
 
 import numpy as np
 
-from batcert.conventions import DEFAULT_PIVOT
 from batcert.errors import Collector, InputError, Problem
-from batcert.specs.common import HEADER_FIELDS, Source, load_checked, spec_from
-from batcert.specs.schema import (
-    Field,
-    Schema,
-    choice,
-    integer,
-    label,
-    list_of,
-    quantity,
-    section,
-    text,
-)
-from batcert.specs.yamlio import Located, decode_text, load_yaml, read_input
+from batcert.specs.common import sha256_of
+from batcert.specs.yamlio import decode_text, read_input
 from batcert.units import PLAUSIBLE
-
-UNCERTAINTY_SCHEMA = Schema("uncertainties", (
-    Field("speed", quantity("speed", minimum=0.0), "Standard uncertainty of a measured speed "
-          "(chronograph calibration: common to every hit).", default=0.0),
-    Field("impact_location", quantity("length", minimum=0.0), "Standard uncertainty of an "
-          "impact location.", default=0.0),
-    Field("moi", quantity("moi", minimum=0.0), "Standard uncertainty of the bat's MOI about "
-          "the pivot.", default=0.0),
-    Field("ball_mass", quantity("mass", minimum=0.0), "Standard uncertainty of the ball's "
-          "mass.", default=0.0),
-))
-
-LAB_SCHEMA = Schema("laboratory", (
-    Field("laboratory", text(), "The testing laboratory's name and address."),
-    Field("accreditation", text(), "Accreditation body and number (e.g. ISO/IEC 17025)."),
-    Field("operator", text(), "Who ran the test."),
-    Field("customer", text(), "For whom."),
-    Field("bat_serial", text(), "The tested bat's serial number."),
-    Field("test_date", text(), "When the hits were measured."),
-    Field("issue_date", text(), "When the certificate is issued."),
-    Field("certificate_number", text(), "The certificate's number."),
-    Field("signatures", list_of(text(), min_items=1, describe="list of names and roles"),
-          "Who approves the certificate (name, role)."),
-))
-
-SESSION_SCHEMA = Schema("hit session", (
-    Field("name", label(), "Session name shown in reports.", required=True),
-    *HEADER_FIELDS,
-    Field("bat", text(), "The bat tested: shipped name or path (relative to this file).",
-          required=True),
-    Field("ball", text(), "The ball lot: shipped name or path of a ball file (mass, COR).",
-          required=True),
-    Field("pivot", quantity("length", minimum=0.0), "Pivot of the test, from the knob.",
-          default=DEFAULT_PIVOT),
-    Field("hits", text(), "The hits CSV, relative to this file.", required=True),
-    Field("location_from", choice("tip", "knob", "pivot"), "The end the CSV's "
-          "impact_location is measured from.", default="tip"),
-    Field("gate_spacing", quantity("length", positive=True), "Distance between the light "
-          "gates, for hits given as gate times."),
-    Field("location_step", quantity("length", minimum=0.1e-3, maximum=0.2), "Hits within half a "
-          "step of a location are one location of the scan (the lab's nominal positions); "
-          "0.1 mm to 0.2 m.",
-          default=0.25 * 0.0254),
-    Field("hits_required", integer(minimum=1, maximum=1000), "Consecutive valid hits at the "
-          "certified location whose mean is certified (NCAA BBCOR: 6).", default=6),
-    Field("speed_tolerance", quantity("speed", positive=True), "A hit whose inbound speed is "
-          "further than this from the protocol's speed is invalid.", default=0.44704),
-    Field("hits_per_ball", integer(minimum=1, maximum=1000), "A ball's hits beyond this many "
-          "are invalid (the ball must be replaced)."),
-    Field("uncertainty", section(UNCERTAINTY_SCHEMA), "Standard uncertainties of the "
-          "instruments and of the inputs (GUM, JCGM 100); zero where not given."),
-    Field("lab", section(LAB_SCHEMA), "The laboratory, operator, customer, bat serial, dates and "
-          "signatures printed on the certificate."),
-))
 
 # column -> (dimension or None, required); a speed pair or a gate-time pair is required
 COLUMNS: dict[str, tuple[str | None, bool]] = {
@@ -118,33 +52,6 @@ MAX_BYTES = 16_000_000
 
 
 @dataclass(frozen=True)
-class SessionSpec:
-    """A validated session file (SI values)."""
-
-    source: Source
-    name: str
-    description: str | None
-    reference: str | None
-    version: str | None
-    bat: str
-    ball: str
-    pivot: float  # [m from knob]
-    hits: str  # CSV path relative to the session file
-    location_from: str  # tip | knob | pivot
-    gate_spacing: float | None  # [m]
-    location_step: float  # [m]
-    hits_required: int
-    speed_tolerance: float  # [m/s]
-    hits_per_ball: int | None
-    uncertainty: dict | None  # speed [m/s], impact_location [m], moi [kg m^2], ball_mass [kg]
-    lab: dict | None  # laboratory, accreditation, operator, ... (text), signatures (list)
-
-    @property
-    def path(self) -> str:
-        return self.source.path
-
-
-@dataclass(frozen=True)
 class Hits:
     """The hits of a CSV, as arrays (SI; NaN where a value is not given)."""
 
@@ -159,31 +66,6 @@ class Hits:
     valid: np.ndarray  # bool: the operator's validity flag
     note: list[str]
     line: list[int]  # the CSV line of each hit
-
-
-def session_for_hits(csv_path: str | Path, bat: str, ball: str, pivot: float) -> SessionSpec:
-    """A session for a bare hits CSV (``batcert reduce HITS.csv --bat BAT``): the bat given,
-    the protocol's ball and pivot, locations from the end the CSV's header names (default the
-    tip), every other field at its default."""
-    from batcert.specs.common import sha256_of
-    path = Path(csv_path)
-    data = Located()
-    data.file, data.line, data.key_pos, data.value_pos = str(path), 1, {}, {}
-    raw = read_hits_bytes(path)
-    head = next((ln for ln in decode_text(raw, str(path)).splitlines()
-                 if ln.strip() and not ln.lstrip().startswith("#")), "")
-    end = re.search(r"impact_location\s*\[[^\]]*\bfrom\s+(tip|knob|pivot)\s*\]", head)
-    defaults = {f.name: f.default for f in SESSION_SCHEMA.fields}
-    return spec_from(SessionSpec, {**defaults, "name": f"hits {path.name}", "bat": bat,
-                                   "ball": ball, "pivot": pivot, "hits": path.name,
-                                   "location_from": end.group(1) if end else "tip"},
-                     source=Source(str(path), sha256_of(raw), data))
-
-
-def load_session(path: str | Path) -> SessionSpec:
-    data = load_yaml(path)
-    values = load_checked(path, SESSION_SCHEMA, data)
-    return spec_from(SessionSpec, values, source=Source.of(path, data))
 
 
 def read_hits_bytes(path: Path) -> bytes:
@@ -248,157 +130,238 @@ def _unit_factor(name: str, unit: str, dimension: str, line: int, column: int,
 def load_hits(path: str | Path, location_from: str = "tip",
               gate_spacing: float | None = None) -> Hits:
     """Read a hits CSV; raise :class:`InputError` with every problem (line, column, field)."""
-    from batcert.specs.common import sha256_of
     path = Path(path)
     raw = read_hits_bytes(path)
     errors = Collector(path)
-    lines = decode_text(raw, str(path)).splitlines()
-    rows = [(n + 1, line) for n, line in enumerate(lines) if line.strip()
-            and not line.lstrip().startswith("#")]
-    if not rows:
-        raise InputError([Problem(str(path), None, "", "no header row and no hits")])
+    rows = _content_rows(decode_text(raw, str(path)), path)
     head_line, head_raw = rows[0]
     split = _split_row(head_raw, head_line, errors)
     errors.raise_if_any()
     assert split is not None
     header, head_cols = split
-    columns: dict[str, tuple[int, float | None]] = {}  # name -> (index, SI factor)
+    columns = _read_header(header, head_cols, head_line, location_from, gate_spacing, errors)
+    errors.raise_if_any()
+    if len(rows) - 1 > MAX_HITS:
+        raise InputError([Problem(str(path), None, "", f"more than {MAX_HITS} hits")])
+    hits = _read_hits(rows[1:], len(header), columns, gate_spacing, errors)
+    if not hits:
+        errors.add(head_line, "", "the file has a header but no hits")
+    errors.raise_if_any()
+    return _as_hits(path, sha256_of(raw), hits)
+
+
+# the known columns of a header: name -> (index in a row, SI factor of its unit or None)
+Columns = dict[str, tuple[int, float | None]]
+
+
+def _content_rows(text_: str, path: Path) -> list[tuple[int, str]]:
+    """The lines of a hits CSV that are neither blank nor comments, with their 1-based numbers;
+    :class:`InputError` when there are none."""
+    rows = [(n + 1, line) for n, line in enumerate(text_.splitlines()) if line.strip()
+            and not line.lstrip().startswith("#")]
+    if not rows:
+        raise InputError([Problem(str(path), None, "", "no header row and no hits")])
+    return rows
+
+
+def _read_header(header: list[str], starts: list[int], line: int, location_from: str,
+                 gate_spacing: float | None, errors: Collector) -> Columns:
+    """The known columns of the header row (its cells ``header``, starting at the 1-based
+    columns ``starts``) with the SI factors of their units; a problem for every unknown,
+    repeated or unitless column and every required one that is missing."""
+    columns: Columns = {}
     named: set[str] = set()  # known columns in the header, also those with a problem
     for j, cell in enumerate(header):
         m = _HEADER.match(cell)
         if not m or m.group(1) not in COLUMNS:
-            import difflib
-            name = m.group(1) if m else cell.strip()
-            close = difflib.get_close_matches(name, list(COLUMNS), n=1, cutoff=0.6)
-            hint = f"; did you mean '{close[0]}'?" if close else ""
-            errors.add(head_line, cell.strip() or f"column {j + 1}", f"unknown column {cell.strip()!r} (columns: "
-                       f"{', '.join(COLUMNS)}){hint}", column=head_cols[j])
+            _unknown_column(cell, m.group(1) if m else cell.strip(), j, line, starts[j], errors)
             continue
         name, unit = m.group(1), m.group(2)
         named.add(name)
         if name in columns:
-            errors.add(head_line, name, "the column appears twice", column=head_cols[j])
+            errors.add(line, name, "the column appears twice", column=starts[j])
             continue
         dimension = COLUMNS[name][0]
-        factor = None
-        if dimension is not None:
-            if unit is None:
-                errors.add(head_line, name, f"give the unit in brackets, e.g. '{name} "
-                           f"[{'in from tip' if name == 'impact_location' else 'm/s'}]'",
-                           column=head_cols[j])
-                continue
-            if name == "impact_location":
-                ends = _UNIT_AND_END.match(unit)
-                if ends and ends.group(2) != location_from:
-                    errors.add(head_line, name, f"the header says from the {ends.group(2)}, the "
-                               f"session says location_from: {location_from}",
-                               column=head_cols[j])
-                unit = ends.group(1) if ends else unit
-            factor = _unit_factor(name, unit, dimension, head_line, head_cols[j], errors)
-        columns[name] = (j, factor)
+        if dimension is None:
+            columns[name] = (j, None)
+        elif unit is None:
+            errors.add(line, name, f"give the unit in brackets, e.g. '{name} "
+                       f"[{'in from tip' if name == 'impact_location' else 'm/s'}]'",
+                       column=starts[j])
+        else:
+            columns[name] = (j, _column_factor(name, unit, dimension, location_from, line,
+                                               starts[j], errors))
+    _check_required(named, columns, line, gate_spacing, errors)
+    return columns
+
+
+def _unknown_column(cell: str, name: str, j: int, line: int, column: int,
+                    errors: Collector) -> None:
+    """The problem of a header cell that names no known column, with a did-you-mean."""
+    import difflib
+    close = difflib.get_close_matches(name, list(COLUMNS), n=1, cutoff=0.6)
+    hint = f"; did you mean '{close[0]}'?" if close else ""
+    errors.add(line, cell.strip() or f"column {j + 1}", f"unknown column {cell.strip()!r} (columns: "
+               f"{', '.join(COLUMNS)}){hint}", column=column)
+
+
+def _column_factor(name: str, unit: str, dimension: str, location_from: str, line: int,
+                   column: int, errors: Collector) -> float | None:
+    """The SI value of one ``unit`` of a column; ``impact_location``'s may name the end the
+    locations are measured from (``in from tip``), which must be the session's."""
+    if name == "impact_location":
+        ends = _UNIT_AND_END.match(unit)
+        if ends and ends.group(2) != location_from:
+            errors.add(line, name, f"the header says from the {ends.group(2)}, the "
+                       f"session says location_from: {location_from}", column=column)
+        unit = ends.group(1) if ends else unit
+    return _unit_factor(name, unit, dimension, line, column, errors)
+
+
+def _check_required(named: set[str], columns: Columns, line: int, gate_spacing: float | None,
+                    errors: Collector) -> None:
+    """Every required column is in the header, and the ball's speeds or its gate times (these
+    with the session's gate spacing)."""
     for name, (_, required) in COLUMNS.items():
         if required and name not in named:
-            errors.add(head_line, name, f"the column {name!r} is missing")
+            errors.add(line, name, f"the column {name!r} is missing")
     speeds = {"inbound_speed", "rebound_speed"} <= set(columns)
     gates = {"inbound_gate_time", "rebound_gate_time"} <= set(columns)
     pairs = ({"inbound_speed", "rebound_speed"}, {"inbound_gate_time", "rebound_gate_time"})
     if not any(pair <= named for pair in pairs):
-        errors.add(head_line, "inbound_speed", "give the ball's speeds (inbound_speed and "
+        errors.add(line, "inbound_speed", "give the ball's speeds (inbound_speed and "
                    "rebound_speed) or its gate times (inbound_gate_time and rebound_gate_time)")
     if gates and not speeds and gate_spacing is None:
-        errors.add(head_line, "inbound_gate_time", "gate times need the session's gate_spacing")
-    errors.raise_if_any()
-    if len(rows) - 1 > MAX_HITS:
-        raise InputError([Problem(str(path), None, "", f"more than {MAX_HITS} hits")])
+        errors.add(line, "inbound_gate_time", "gate times need the session's gate_spacing")
 
-    out: dict[str, list] = {k: [] for k in ("hit", "ball", "vi", "vr", "r", "w2", "valid",
-                                           "note", "line")}
-    for line_no, row_raw in rows[1:]:
-        split = _split_row(row_raw, line_no, errors)
+
+@dataclass(frozen=True)
+class _Row:
+    """One row of hits being read: its CSV line, its cells and the 1-based column where each
+    starts, the header's columns, and where its problems go."""
+
+    line: int
+    cells: list[str]
+    starts: list[int]
+    columns: Columns
+    errors: Collector
+
+    def column(self, name: str) -> int:
+        """Where the cell of the column ``name`` starts."""
+        return self.starts[self.columns[name][0]]
+
+    def text(self, name: str) -> str:
+        """The cell of the column ``name``, stripped; "" where the header has no such column."""
+        return self.cells[self.columns[name][0]].strip() if name in self.columns else ""
+
+    def number(self, name: str) -> float:
+        """The cell of the column ``name`` in SI; NaN where the header has no such column or
+        the cell is no plausible number (then with a problem)."""
+        if name not in self.columns:
+            return float("nan")
+        j, factor = self.columns[name]
+        text_ = self.cells[j].strip()
+        if text_ == "" and name == "bat_angular_speed_after":  # not measured on this hit
+            return float("nan")
+        try:
+            value = float(text_.replace("_", "?"))  # "6_0.8" is not 60.8 to a lab
+        except ValueError:
+            self.errors.add(self.line, name, f"expected a number, got {text_!r}",
+                            column=self.starts[j])
+            return float("nan")
+        if not np.isfinite(value):
+            self.errors.add(self.line, name, f"expected a finite number, got {text_!r}",
+                            column=self.starts[j])
+            return float("nan")
+        si = value * (factor if factor is not None else 1.0)
+        dimension = COLUMNS[name][0]
+        if dimension in PLAUSIBLE and abs(si) > PLAUSIBLE[dimension]:
+            self.errors.add(self.line, name, f"{text_} is beyond any plausible "
+                            f"{dimension.replace('_', ' ')} (at most {PLAUSIBLE[dimension]:g} "
+                            "in SI units)", column=self.starts[j])
+            return float("nan")
+        return si
+
+    def positive(self, name: str, value: float) -> float:
+        """``value``, with a problem at the column ``name`` where it is not above zero."""
+        if np.isfinite(value) and value <= 0:
+            self.errors.add(self.line, name, "must be above zero", column=self.column(name))
+        return value
+
+    def speed_in_range(self, name: str, v: float, low: float,
+                       gate_spacing: float | None) -> float:
+        """``v`` [m/s] if within [low, the largest plausible speed]; otherwise a problem at the
+        column ``name`` it came from (a speed, or a gate time over ``gate_spacing`` [m]) and
+        NaN."""
+        high = INBOUND_SPEED_RANGE[1]
+        if np.isnan(v) or low <= v <= high:
+            return v
+        which, span = name.split("_")[0], f"{low:g}-{high:g} m/s"
+        message = (f"gives {which} speed {v:.4g} m/s over the {gate_spacing:g} m gate "
+                   f"spacing, outside {span} (check the time and its unit)"
+                   if name.endswith("gate_time") else f"{v:.4g} m/s is outside {span}, "
+                   f"the {which} speeds of a ball-cannon test (a unit or a typo?)")
+        self.errors.add(self.line, name, message, column=self.column(name))
+        return float("nan")
+
+
+def _read_hits(rows: list[tuple[int, str]], width: int, columns: Columns,
+               gate_spacing: float | None, errors: Collector) -> list[tuple]:
+    """The hits of the rows after the header (:func:`_read_hit`); a problem for each row that
+    is not well-formed CSV of ``width`` fields."""
+    speeds = {"inbound_speed", "rebound_speed"} <= set(columns)
+    hits = []
+    for line, raw in rows:
+        split = _split_row(raw, line, errors)
         if split is None:
             continue
         cells, starts = split
-        if len(cells) != len(header):
-            errors.add(line_no, "", f"{len(cells)} fields, the header has {len(header)}")
+        if len(cells) != width:
+            errors.add(line, "", f"{len(cells)} fields, the header has {width}")
             continue
+        hits.append(_read_hit(_Row(line, cells, starts, columns, errors), speeds, gate_spacing))
+    return hits
 
-        def number(name: str, line_no=line_no, cells=cells, starts=starts) -> float:
-            if name not in columns:
-                return float("nan")
-            j, factor = columns[name]
-            text_ = cells[j].strip()
-            if text_ == "" and name == "bat_angular_speed_after":  # not measured on this hit
-                return float("nan")
-            try:
-                value = float(text_.replace("_", "?"))  # "6_0.8" is not 60.8 to a lab
-            except ValueError:
-                errors.add(line_no, name, f"expected a number, got {text_!r}", column=starts[j])
-                return float("nan")
-            if not np.isfinite(value):
-                errors.add(line_no, name, f"expected a finite number, got {text_!r}",
-                           column=starts[j])
-                return float("nan")
-            si = value * (factor if factor is not None else 1.0)
-            dimension = COLUMNS[name][0]
-            if dimension in PLAUSIBLE and abs(si) > PLAUSIBLE[dimension]:
-                errors.add(line_no, name, f"{text_} is beyond any plausible "
-                           f"{dimension.replace('_', ' ')} (at most {PLAUSIBLE[dimension]:g} "
-                           "in SI units)", column=starts[j])
-                return float("nan")
-            return si
 
-        def positive(name: str, value: float, line_no=line_no, starts=starts) -> float:
-            if np.isfinite(value) and value <= 0:
-                errors.add(line_no, name, "must be above zero", column=starts[columns[name][0]])
-            return value
+def _read_hit(row: _Row, speeds: bool, gate_spacing: float | None) -> tuple:
+    """One hit, in the order of :class:`Hits`' fields from ``hit`` (SI; NaN where a value is
+    missing or wrong)."""
+    vi, vr = _ball_speeds(row, speeds, gate_spacing)
+    valid_text = row.text("valid").lower()
+    if valid_text not in ("", "yes", "no", "true", "false", "1", "0"):
+        row.errors.add(row.line, "valid", f"expected yes or no, got {valid_text!r}",
+                       column=row.column("valid"))
+    return (row.number("hit"), row.text("ball"), vi, vr, row.number("impact_location"),
+            row.number("bat_angular_speed_after"), valid_text not in ("no", "false", "0"),
+            row.text("note"), row.line)
 
-        def speed_range(name: str, v: float, low: float, line_no=line_no,
-                        starts=starts) -> float:
-            """``v`` [m/s] if within [low, the largest plausible speed]; otherwise a problem
-            at the column ``name`` it came from (a speed, or a gate time) and NaN."""
-            high = INBOUND_SPEED_RANGE[1]
-            if np.isnan(v) or low <= v <= high:
-                return v
-            which, span = name.split("_")[0], f"{low:g}-{high:g} m/s"
-            message = (f"gives {which} speed {v:.4g} m/s over the {gate_spacing:g} m gate "
-                       f"spacing, outside {span} (check the time and its unit)"
-                       if name.endswith("gate_time") else f"{v:.4g} m/s is outside {span}, "
-                       f"the {which} speeds of a ball-cannon test (a unit or a typo?)")
-            errors.add(line_no, name, message, column=starts[columns[name][0]])
-            return float("nan")
 
-        if speeds:
-            vi = positive("inbound_speed", number("inbound_speed"))
-            vi = speed_range("inbound_speed", vi, INBOUND_SPEED_RANGE[0]) if vi > 0 else vi
-            vr = number("rebound_speed")
-        else:
-            ti = positive("inbound_gate_time", number("inbound_gate_time"))
-            tr = positive("rebound_gate_time", number("rebound_gate_time"))
-            assert gate_spacing is not None
-            # a time <= 0 is reported above; a tiny one gives a speed reported here
-            vi = speed_range("inbound_gate_time", gate_spacing / ti, INBOUND_SPEED_RANGE[0]) \
-                if ti > 0 else float("nan")
-            vr = speed_range("rebound_gate_time", gate_spacing / tr, 0.0) \
-                if tr > 0 else float("nan")
-        if np.isfinite(vr) and vr < 0:
-            errors.add(line_no, "rebound_speed", "is a magnitude: must not be negative",
-                       column=starts[columns["rebound_speed"][0]] if speeds else None)
-        valid_text = cells[columns["valid"][0]].strip().lower() if "valid" in columns else ""
-        if valid_text not in ("", "yes", "no", "true", "false", "1", "0"):
-            errors.add(line_no, "valid", f"expected yes or no, got {valid_text!r}",
-                       column=starts[columns["valid"][0]])
-        out["hit"].append(number("hit"))
-        out["ball"].append(cells[columns["ball"][0]].strip())
-        out["vi"].append(vi)
-        out["vr"].append(vr)
-        out["r"].append(number("impact_location"))
-        out["w2"].append(number("bat_angular_speed_after"))
-        out["valid"].append(valid_text not in ("no", "false", "0"))
-        out["note"].append(cells[columns["note"][0]].strip() if "note" in columns else "")
-        out["line"].append(line_no)
-    if not out["line"]:
-        errors.add(head_line, "", "the file has a header but no hits")
-    errors.raise_if_any()
-    return Hits(str(path), sha256_of(raw), np.asarray(out["hit"]), out["ball"],
-                np.asarray(out["vi"]), np.asarray(out["vr"]), np.asarray(out["r"]),
-                np.asarray(out["w2"]), np.asarray(out["valid"], bool), out["note"], out["line"])
+def _ball_speeds(row: _Row, speeds: bool, gate_spacing: float | None) -> tuple[float, float]:
+    """The ball's inbound and rebound speeds [m/s]: the row's ``speeds``, or its gate times
+    over ``gate_spacing`` [m]; NaN, with a problem, where one is out of range."""
+    low = INBOUND_SPEED_RANGE[0]
+    if speeds:
+        vi = row.positive("inbound_speed", row.number("inbound_speed"))
+        vi = row.speed_in_range("inbound_speed", vi, low, gate_spacing) if vi > 0 else vi
+        vr = row.number("rebound_speed")
+    else:
+        ti = row.positive("inbound_gate_time", row.number("inbound_gate_time"))
+        tr = row.positive("rebound_gate_time", row.number("rebound_gate_time"))
+        assert gate_spacing is not None
+        # a time <= 0 is reported above; a tiny one gives a speed reported here
+        vi = row.speed_in_range("inbound_gate_time", gate_spacing / ti, low, gate_spacing) \
+            if ti > 0 else float("nan")
+        vr = row.speed_in_range("rebound_gate_time", gate_spacing / tr, 0.0, gate_spacing) \
+            if tr > 0 else float("nan")
+    if np.isfinite(vr) and vr < 0:
+        row.errors.add(row.line, "rebound_speed", "is a magnitude: must not be negative",
+                       column=row.column("rebound_speed") if speeds else None)
+    return vi, vr
+
+
+def _as_hits(path: Path, sha256: str, hits: list[tuple]) -> Hits:
+    """:class:`Hits` from the tuples of :func:`_read_hit` (at least one)."""
+    hit, ball, vi, vr, location, w2, valid, note, line = (
+        list(c) for c in zip(*hits, strict=True))
+    return Hits(str(path), sha256, np.asarray(hit), ball, np.asarray(vi), np.asarray(vr),
+                np.asarray(location), np.asarray(w2), np.asarray(valid, bool), note, line)

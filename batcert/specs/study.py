@@ -179,8 +179,6 @@ def load_study(path: str | Path) -> StudySpec:
     Raises InputError with every problem of the study file (a referenced protocol file with
     errors raises that file's problems).
     """
-    from batcert.specs.resolve import NotFound, resolve
-
     path = Path(path)
     data = load_yaml(path)
     errors = Collector(path)
@@ -188,6 +186,31 @@ def load_study(path: str | Path) -> StudySpec:
     errors.raise_if_any()
     assert v is not None
     source = Source.of(path, data)
+    protocols, nested = _load_protocols(v, path, source, data, errors)
+    ids = [p.id for p in protocols]
+    for i, pid in enumerate(ids):
+        if pid in ids[:i]:
+            errors.add(lookup(data, "protocols")[0], "protocols", f"protocol id {pid!r} appears "
+                       "twice; a comparison needs distinct ids")
+    if not nested:
+        _check_claims(v, ids, data, errors)
+        _check_figures(v, protocols, data, errors)
+    bats = _resolve_bats(v, path, data, errors)
+    problems = list(errors.problems) + [p for e in nested for p in e.problems]
+    if problems:
+        raise InputError(problems)
+    claims = tuple(spec_from(ClaimSpec, c) for c in v["claims"] or [])
+    figures = tuple(spec_from(FigureSpec, f) for f in v["figures"] or [])
+    return spec_from(StudySpec, {**v, "protocols": tuple(protocols), "bats": tuple(bats),
+                                 "claims": claims, "figures": figures}, source=source)
+
+
+def _load_protocols(v: dict, path: Path, source: Source, data: Located, errors: Collector
+                    ) -> tuple[list[ProtocolSpec], list[InputError]]:
+    """The study's protocols, inline or from their files, each with its ball resolved; the
+    problems of protocol files that do not load are kept apart (``nested``), whole."""
+    from batcert.specs.resolve import NotFound, resolve
+
     protocols: list[ProtocolSpec] = []
     nested: list[InputError] = []
     for i, entry in enumerate(v["protocols"]):
@@ -210,37 +233,34 @@ def load_study(path: str | Path) -> StudySpec:
             resolve("ball", ball_of, relative_to=rel)
         except NotFound as exc:
             errors.add(lookup(data, "protocols", i)[0], f"protocols[{i}]", str(exc))
-    ids = [p.id for p in protocols]
-    for i, pid in enumerate(ids):
-        if pid in ids[:i]:
-            errors.add(lookup(data, "protocols")[0], "protocols", f"protocol id {pid!r} appears "
-                       "twice; a comparison needs distinct ids")
-    if not nested:
-        for i, claim in enumerate(v["claims"] or []):
-            for key in ("protocols", "compare_with"):
-                for j, pid in enumerate(claim[key] or []):
-                    if pid not in ids:
-                        errors.add(lookup(data, "claims", i, key, j)[0],
-                                   f"claims[{i}].{key}[{j}]", f"{pid!r} is not a protocol of this "
-                                   f"study ({', '.join(ids)})")
-            if claim["check"] == "lower-than" and len(claim["protocols"]) != 2:
-                errors.add(lookup(data, "claims", i, "protocols")[0], f"claims[{i}].protocols",
-                           "lower-than compares exactly two protocols: [lower, higher]")
-    if not nested:
-        _check_figures(v, protocols, data, errors)
+    return protocols, nested
+
+
+def _check_claims(v: dict, ids: list[str], data: Located, errors: Collector) -> None:
+    """A claim reads protocols of the study (``ids``); lower-than reads exactly two."""
+    for i, claim in enumerate(v["claims"] or []):
+        for key in ("protocols", "compare_with"):
+            for j, pid in enumerate(claim[key] or []):
+                if pid not in ids:
+                    errors.add(lookup(data, "claims", i, key, j)[0],
+                               f"claims[{i}].{key}[{j}]", f"{pid!r} is not a protocol of this "
+                               f"study ({', '.join(ids)})")
+        if claim["check"] == "lower-than" and len(claim["protocols"]) != 2:
+            errors.add(lookup(data, "claims", i, "protocols")[0], f"claims[{i}].protocols",
+                       "lower-than compares exactly two protocols: [lower, higher]")
+
+
+def _resolve_bats(v: dict, path: Path, data: Located, errors: Collector) -> list[Path]:
+    """The study's default bats, resolved (shipped names or paths relative to the study)."""
+    from batcert.specs.resolve import NotFound, resolve
+
     bats: list[Path] = []
     for i, b in enumerate(v["bats"] or []):
         try:
             bats.append(resolve("bat", b, relative_to=path))
         except NotFound as exc:
             errors.add(lookup(data, "bats", i)[0], f"bats[{i}]", str(exc))
-    problems = list(errors.problems) + [p for e in nested for p in e.problems]
-    if problems:
-        raise InputError(problems)
-    claims = tuple(spec_from(ClaimSpec, c) for c in v["claims"] or [])
-    figures = tuple(spec_from(FigureSpec, f) for f in v["figures"] or [])
-    return spec_from(StudySpec, {**v, "protocols": tuple(protocols), "bats": tuple(bats),
-                                 "claims": claims, "figures": figures}, source=source)
+    return bats
 
 
 def _check_figures(v: dict, protocols: list[ProtocolSpec], data: Located,

@@ -8,10 +8,10 @@ import doctest
 import pytest
 
 from batcert.physics import rigid
-from batcert.physics.balls import hysteresis as contact
+from batcert.physics.balls import power_law
 
 
-@pytest.mark.parametrize("module", [rigid, contact], ids=lambda m: m.__name__)
+@pytest.mark.parametrize("module", [rigid, power_law], ids=lambda m: m.__name__)
 def test_docstring_examples(module):
     result = doctest.testmod(module, optionflags=doctest.NORMALIZE_WHITESPACE)
     assert result.attempted > 0 and result.failed == 0

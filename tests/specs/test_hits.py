@@ -102,7 +102,7 @@ def test_a_byte_order_mark_is_accepted(tmp_path):
 
 
 def test_a_bare_csv_with_a_byte_order_mark_keeps_its_header_end(tmp_path):
-    from batcert.specs.hits import session_for_hits
+    from batcert.specs.session import session_for_hits
     path = tmp_path / "hits.csv"
     path.write_bytes(b"\xef\xbb\xbf" + HEAD.replace("from tip", "from knob").encode() + b"\n")
     assert session_for_hits(path, "aluminium-34", "collegiate-baseball", 0.15).location_from \

@@ -14,7 +14,8 @@ from jsonout import result as result_of
 from batcert.errors import InputError
 from batcert.specs import hits, yamlio
 from batcert.specs.bat import load_bat
-from batcert.specs.hits import load_hits, session_for_hits
+from batcert.specs.hits import load_hits
+from batcert.specs.session import session_for_hits
 
 LAB = Path(__file__).resolve().parents[2] / "examples" / "lab"
 HEAD = "hit,ball,inbound_speed [m/s],rebound_speed [m/s],impact_location [in from tip],valid,note"

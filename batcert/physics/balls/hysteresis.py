@@ -1,18 +1,11 @@
-"""Nathan's (2000) power-law hysteresis ball, and that ball against a rigid wall.
+"""Nathan's (2000) power-law hysteresis ball: its parameters (:class:`PowerLawHysteresis`, the
+registry's ``power-law-hysteresis``), the ``e0`` each impact gets, and its state in a batched
+time integration (:class:`HysteresisMarch`).
 
-The law (Nathan, Am. J. Phys. 68 (2000) 979)
---------------------------------------------
-The ball is a nonlinear, lossy spring of compression ``u`` [m] (positive = compressed):
-
-* compression (``u`` at its running maximum): ``F = k1 u^alpha``;
-* restitution (``u`` below the maximum ``u_m`` reached so far):
-  ``F = k2 u^beta = k1 u_m^alpha (u / u_m)^beta``, so both branches meet at ``u_m``, with
-  ``beta = (1 + alpha) / e0^2 - 1``;
-* ``F = 0`` for ``u <= 0`` (the ball only pushes).
-
-The work done on the ball during compression is ``k1 u_m^(1+alpha) / (1+alpha)``, the work it
-returns is ``k1 u_m^(1+alpha) / (1+beta)``; their ratio ``(1+alpha)/(1+beta) = e0^2`` does not
-depend on ``u_m``, so against a rigid wall the COR is ``e0`` at every impact speed.
+The law's equations are in :mod:`batcert.physics.balls.power_law` (``F = k1 u^alpha`` on
+compression, ``k1 u_m^alpha (u / u_m)^beta`` on restitution, ``beta = (1 + alpha) / e0^2 - 1``:
+against a rigid wall the COR is ``e0`` at every impact speed), the closed-form rigid-wall impact
+in :mod:`batcert.physics.balls.wall_impact`; both are importable from here too.
 
 How the parameters come from the spec
 -------------------------------------
@@ -46,146 +39,22 @@ from typing import ClassVar
 
 import numpy as np
 
+from batcert.physics.balls.power_law import (
+    contact_force,
+    deformation_work,
+    equivalent_wall_speed,
+    max_compression,
+    peak_force,
+    restitution_exponent,
+)
+from batcert.physics.balls.wall_impact import RigidWallImpact, rigid_wall_impact
+
 __all__ = ["HysteresisMarch", "PowerLawHysteresis", "RigidWallImpact", "compression_cor",
            "compression_restitution", "compression_restitution_rows", "contact_force",
            "deformation_work", "equivalent_wall_speed", "max_compression", "peak_force",
            "restitution_exponent", "rigid_wall_impact"]
 
 _TINY = 1e-300  # floor of the compression inside log() [m]
-
-
-def restitution_exponent(alpha, e0):
-    """Restitution exponent ``beta = (1 + alpha) / e0^2 - 1`` [-] (Nathan 2000).
-
-    Parameters
-    ----------
-    alpha : float or array_like
-        Compression exponent [-].
-    e0 : float or array_like
-        Rigid-wall COR the law is to reproduce [-], in (0, 1].
-
-    Returns
-    -------
-    numpy.ndarray
-        ``beta`` [-].
-
-    References
-    ----------
-    A. M. Nathan, Am. J. Phys. 68 (2000) 979.
-
-    Examples
-    --------
-    Nathan's ball at 58 m/s (alpha = 1.84, e0 = 0.53): beta = 2.84 / 0.2809 - 1 = 9.11
-    (docs/references.md, derived).
-
-    >>> round(float(restitution_exponent(1.84, 0.53)), 2)
-    9.11
-    """
-    e0 = np.asarray(e0, dtype=float)
-    if np.any((e0 <= 0) | (e0 > 1)):
-        raise ValueError(f"the ball's COR e0 must lie in (0, 1], got {e0}")
-    return (1.0 + alpha) / e0**2 - 1.0
-
-
-def contact_force(u, u_max, k1, alpha, beta):
-    """Contact force of the hysteresis law [N] (Nathan 2000).
-
-    Parameters
-    ----------
-    u : array_like
-        Compression [m], positive = compressed.
-    u_max : array_like
-        Largest compression reached so far [m] (0 before contact). Where ``u >= u_max`` the
-        compression branch applies.
-    k1 : float
-        Compression stiffness [N / m^alpha].
-    alpha, beta : float or array_like
-        Compression and restitution exponents [-].
-
-    Returns
-    -------
-    numpy.ndarray
-        ``F >= 0`` [N]: ``k1 u^alpha`` on compression, ``k1 u_m^alpha (u/u_m)^beta`` on
-        restitution, 0 for ``u <= 0``.
-    """
-    u = np.clip(np.asarray(u, dtype=float), 0.0, None)
-    top = np.maximum(np.asarray(u_max, dtype=float), u)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ratio = np.where(top > 0, u / np.where(top > 0, top, 1.0), 0.0)
-    return k1 * top**alpha * ratio**beta
-
-
-def deformation_work(u, u_max, k1, alpha, beta):
-    """Net work done on the ball so far, ``integral F du`` along its path [J].
-
-    On compression it is ``k1 u^(1+alpha) / (1+alpha)``; on restitution the energy already
-    returned, ``k1 u_m^(1+alpha) (1 - (u/u_m)^(1+beta)) / (1+beta)``, is subtracted. At separation
-    (``u = 0``) what is left is the energy the ball dissipated. For a lossless ball
-    (``e0 = 1``, ``beta = alpha``) it is the stored elastic energy.
-    """
-    u = np.clip(np.asarray(u, dtype=float), 0.0, None)
-    top = np.maximum(np.asarray(u_max, dtype=float), u)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ratio = np.where(top > 0, u / np.where(top > 0, top, 1.0), 0.0)
-    stored = k1 * top ** (1.0 + alpha) / (1.0 + alpha)
-    returned = k1 * top ** (1.0 + alpha) * (1.0 - ratio ** (1.0 + beta)) / (1.0 + beta)
-    return stored - returned
-
-
-def max_compression(speed, mass, k1, alpha):
-    """Largest compression of a ball hitting a rigid wall [m]:
-    ``u_m = ((1 + alpha) m v^2 / (2 k1))^(1 / (1 + alpha))`` (energy balance of the compression
-    branch). For a ball hitting a body of effective mass ``M``, pass the reduced mass
-    ``m M / (m + M)`` and the relative speed.
-
-    Parameters
-    ----------
-    speed : array_like
-        Normal impact speed [m/s].
-    mass : float
-        Ball (or reduced) mass [kg].
-    k1 : float
-        Compression stiffness [N / m^alpha].
-    alpha : float
-        Compression exponent [-].
-
-    Returns
-    -------
-    numpy.ndarray
-        ``u_m`` [m].
-
-    References
-    ----------
-    A. M. Nathan, Am. J. Phys. 68 (2000) 979 (the compression law).
-
-    Examples
-    --------
-    Nathan's ball (0.145 kg, k1 = 6.53e7 N/m^1.84) against a rigid wall at 58 m/s compresses
-    17.7 mm (docs/references.md, derived):
-
-    >>> round(float(max_compression(58.0, 0.145, 6.53e7, 1.84)) * 1e3, 1)
-    17.7
-    """
-    v = np.abs(np.asarray(speed, dtype=float))
-    return ((1.0 + alpha) * mass * v**2 / (2.0 * k1)) ** (1.0 / (1.0 + alpha))
-
-
-def equivalent_wall_speed(compression, mass, k1, alpha):
-    """The rigid-wall impact speed that compresses the ball by ``compression`` [m/s]:
-    ``v = sqrt(2 k1 u^(1+alpha) / ((1+alpha) m))``, the inverse of :func:`max_compression`
-    (the ball has then stored the same energy, ``k1 u^(1+alpha) / (1+alpha)``).
-
-    Parameters
-    ----------
-    compression : array_like
-        Largest compression of the ball [m].
-    mass : float
-        Ball mass [kg].
-    k1, alpha : float
-        Compression law [N/m^alpha], [-].
-    """
-    u = np.maximum(np.asarray(compression, dtype=float), 0.0)
-    return np.sqrt(2.0 * k1 * u ** (1.0 + alpha) / ((1.0 + alpha) * mass))
 
 
 def compression_cor(law: PowerLawHysteresis, mass: float, compression, k1=None) -> np.ndarray:
@@ -240,99 +109,6 @@ def compression_restitution_rows(k1, alpha: float, speeds, mass, values):
         return (1.0 + alpha) / e0**2 - 1.0
     return beta
 
-
-def peak_force(speed, mass, k1, alpha):
-    """Peak force ``k1 u_m^alpha`` of a rigid-wall impact [N] (see :func:`max_compression`)."""
-    return k1 * max_compression(speed, mass, k1, alpha) ** alpha
-
-
-def _quarter_time(p, s_from):
-    """``integral_{s_from}^1 ds / sqrt(1 - s^p)`` [-], via the regularised incomplete beta
-    function: with ``x = s^p`` it is ``B(1/p, 1/2) (1 - I_{s_from^p}(1/p, 1/2)) / p``."""
-    a = 1.0 / p
-    from scipy.special import beta as beta_function  # lazy: ~0.5 s to import
-    from scipy.special import betainc
-
-    return beta_function(a, 0.5) * (1.0 - betainc(a, 0.5, np.asarray(s_from, float) ** p)) / p
-
-
-@dataclass(frozen=True)
-class RigidWallImpact:
-    """A ball hitting a rigid wall normally, from the closed-form solution of the law."""
-
-    speed: np.ndarray  # impact speed [m/s]
-    e0: np.ndarray  # law parameter used [-]
-    cor: np.ndarray  # rebound / impact speed [-]
-    max_compression: np.ndarray  # [m]
-    peak_force: np.ndarray  # [N]
-    compression_time: np.ndarray  # contact start to maximum compression [s]
-    contact_time: np.ndarray  # contact start to separation [s]
-    collision_time: np.ndarray  # time over which the central `fraction` of the impulse acts [s]
-    fraction: float  # impulse fraction of `collision_time` [-]
-
-
-def rigid_wall_impact(speed, mass, k1, alpha, e0, fraction: float = 0.99) -> RigidWallImpact:
-    """Closed-form rigid-wall impact of the hysteresis law (Nathan 2000).
-
-    With ``p = 1 + alpha`` (compression) or ``1 + beta`` (restitution), energy conservation on
-    each branch gives the speed as a function of compression, ``v(u) = v_0 sqrt(1 - (u/u_m)^p)``
-    with ``v_0 = v`` on compression and ``e0 v`` on restitution, so each branch lasts
-    ``(u_m / v_0) integral ds / sqrt(1 - s^p)`` (an incomplete beta function). The rebound speed
-    follows from the energy the restitution branch returns, ``k1 u_m^(1+alpha) / (1+beta)``,
-    hence ``cor = sqrt((1+alpha)/(1+beta)) = e0``.
-
-    The *collision time* is the interval over which the central ``fraction`` of the impulse
-    ``m v (1 + e0)`` is delivered (from ``(1-fraction)/2`` to ``(1+fraction)/2`` of it), the weak
-    tails at contact start and separation being left out; the ball's momentum fixes the
-    compression at both instants.
-
-    Parameters
-    ----------
-    speed : array_like
-        Normal impact speed [m/s].
-    mass : float
-        Ball mass [kg].
-    k1 : float
-        Compression stiffness [N / m^alpha].
-    alpha : float
-        Compression exponent [-].
-    e0 : array_like
-        Law COR parameter [-] (e.g. ``ball.cor(speed)``).
-    fraction : float
-        Impulse fraction defining the collision time [-].
-
-    Returns
-    -------
-    RigidWallImpact
-    """
-    v = np.abs(np.asarray(speed, dtype=float))
-    e0 = np.broadcast_to(np.asarray(e0, dtype=float), v.shape)
-    if not 0 < fraction < 1:
-        raise ValueError(f"fraction must lie in (0, 1), got {fraction}")
-    if np.any(v <= 0):
-        raise ValueError("impact speed must be positive")
-    beta = restitution_exponent(alpha, e0)
-    um = max_compression(v, mass, k1, alpha)
-    pc, pr = 1.0 + alpha, 1.0 + beta
-    rebound = np.sqrt(2.0 * k1 * um ** (1.0 + alpha) / (mass * pr))
-    t_comp = um / v * _quarter_time(pc, 0.0)
-    t_rest = um / rebound * _quarter_time(pr, 0.0)
-    # impulse fraction f delivered: ball velocity (+ toward the wall) is v (1 - f (1 + e0))
-    lo, hi = 0.5 * (1.0 - fraction), 0.5 * (1.0 + fraction)
-    cor = rebound / v
-
-    def time_at(f):
-        vel = 1.0 - f * (1.0 + cor)  # / v; > 0 still compressing
-        comp = vel > 0
-        s_c = np.clip(1.0 - np.where(comp, vel, 0.0) ** 2, 0.0, 1.0) ** (1.0 / pc)
-        s_r = np.clip(1.0 - np.where(comp, 0.0, -vel / cor) ** 2, 0.0, 1.0) ** (1.0 / pr)
-        return np.where(comp, t_comp - um / v * _quarter_time(pc, s_c),
-                        t_comp + um / rebound * _quarter_time(pr, s_r))
-
-    return RigidWallImpact(speed=v, e0=e0, cor=cor, max_compression=um,
-                           peak_force=k1 * um**alpha, compression_time=t_comp,
-                           contact_time=t_comp + t_rest,
-                           collision_time=time_at(hi) - time_at(lo), fraction=fraction)
 
 
 @dataclass(frozen=True)

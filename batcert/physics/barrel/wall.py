@@ -170,7 +170,7 @@ def _green_bands(assembler: Assembler, orders: list[int], n_nodes: int) -> np.nd
 
     green = np.zeros((len(orders), 3 * n_nodes, reach(3) + 1))
     higher = [i for i, n in enumerate(orders) if n]
-    if higher:  # five unknowns per node, u_r at slot 3 (shell._layout)
+    if higher:  # five unknowns per node, u_r at slot 3 (shell_element._layout)
         bands, free = assembler.stiffness_bands([orders[i] for i in higher])
         factor = np.stack([scipy.linalg.cholesky_banded(ab, lower=True, check_finite=False)
                            for ab in bands])

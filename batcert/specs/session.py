@@ -1,0 +1,131 @@
+"""A lab session file (YAML): the bat, the ball lot, the pivot, the instruments and the hits CSV
+(:mod:`batcert.specs.hits`) of a test; docs/lab-reduction.md documents it. A bare hits CSV gets a
+session of defaults (:func:`session_for_hits`).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from batcert.conventions import DEFAULT_PIVOT
+from batcert.specs.common import HEADER_FIELDS, Source, load_checked, sha256_of, spec_from
+from batcert.specs.hits import read_hits_bytes
+from batcert.specs.schema import (
+    Field,
+    Schema,
+    choice,
+    integer,
+    label,
+    list_of,
+    quantity,
+    section,
+    text,
+)
+from batcert.specs.yamlio import Located, decode_text, load_yaml
+
+UNCERTAINTY_SCHEMA = Schema("uncertainties", (
+    Field("speed", quantity("speed", minimum=0.0), "Standard uncertainty of a measured speed "
+          "(chronograph calibration: common to every hit).", default=0.0),
+    Field("impact_location", quantity("length", minimum=0.0), "Standard uncertainty of an "
+          "impact location.", default=0.0),
+    Field("moi", quantity("moi", minimum=0.0), "Standard uncertainty of the bat's MOI about "
+          "the pivot.", default=0.0),
+    Field("ball_mass", quantity("mass", minimum=0.0), "Standard uncertainty of the ball's "
+          "mass.", default=0.0),
+))
+
+LAB_SCHEMA = Schema("laboratory", (
+    Field("laboratory", text(), "The testing laboratory's name and address."),
+    Field("accreditation", text(), "Accreditation body and number (e.g. ISO/IEC 17025)."),
+    Field("operator", text(), "Who ran the test."),
+    Field("customer", text(), "For whom."),
+    Field("bat_serial", text(), "The tested bat's serial number."),
+    Field("test_date", text(), "When the hits were measured."),
+    Field("issue_date", text(), "When the certificate is issued."),
+    Field("certificate_number", text(), "The certificate's number."),
+    Field("signatures", list_of(text(), min_items=1, describe="list of names and roles"),
+          "Who approves the certificate (name, role)."),
+))
+
+SESSION_SCHEMA = Schema("hit session", (
+    Field("name", label(), "Session name shown in reports.", required=True),
+    *HEADER_FIELDS,
+    Field("bat", text(), "The bat tested: shipped name or path (relative to this file).",
+          required=True),
+    Field("ball", text(), "The ball lot: shipped name or path of a ball file (mass, COR).",
+          required=True),
+    Field("pivot", quantity("length", minimum=0.0), "Pivot of the test, from the knob.",
+          default=DEFAULT_PIVOT),
+    Field("hits", text(), "The hits CSV, relative to this file.", required=True),
+    Field("location_from", choice("tip", "knob", "pivot"), "The end the CSV's "
+          "impact_location is measured from.", default="tip"),
+    Field("gate_spacing", quantity("length", positive=True), "Distance between the light "
+          "gates, for hits given as gate times."),
+    Field("location_step", quantity("length", minimum=0.1e-3, maximum=0.2), "Hits within half a "
+          "step of a location are one location of the scan (the lab's nominal positions); "
+          "0.1 mm to 0.2 m.",
+          default=0.25 * 0.0254),
+    Field("hits_required", integer(minimum=1, maximum=1000), "Consecutive valid hits at the "
+          "certified location whose mean is certified (NCAA BBCOR: 6).", default=6),
+    Field("speed_tolerance", quantity("speed", positive=True), "A hit whose inbound speed is "
+          "further than this from the protocol's speed is invalid.", default=0.44704),
+    Field("hits_per_ball", integer(minimum=1, maximum=1000), "A ball's hits beyond this many "
+          "are invalid (the ball must be replaced)."),
+    Field("uncertainty", section(UNCERTAINTY_SCHEMA), "Standard uncertainties of the "
+          "instruments and of the inputs (GUM, JCGM 100); zero where not given."),
+    Field("lab", section(LAB_SCHEMA), "The laboratory, operator, customer, bat serial, dates and "
+          "signatures printed on the certificate."),
+))
+
+
+@dataclass(frozen=True)
+class SessionSpec:
+    """A validated session file (SI values)."""
+
+    source: Source
+    name: str
+    description: str | None
+    reference: str | None
+    version: str | None
+    bat: str
+    ball: str
+    pivot: float  # [m from knob]
+    hits: str  # CSV path relative to the session file
+    location_from: str  # tip | knob | pivot
+    gate_spacing: float | None  # [m]
+    location_step: float  # [m]
+    hits_required: int
+    speed_tolerance: float  # [m/s]
+    hits_per_ball: int | None
+    uncertainty: dict | None  # speed [m/s], impact_location [m], moi [kg m^2], ball_mass [kg]
+    lab: dict | None  # laboratory, accreditation, operator, ... (text), signatures (list)
+
+    @property
+    def path(self) -> str:
+        return self.source.path
+
+
+def session_for_hits(csv_path: str | Path, bat: str, ball: str, pivot: float) -> SessionSpec:
+    """A session for a bare hits CSV (``batcert reduce HITS.csv --bat BAT``): the bat given,
+    the protocol's ball and pivot, locations from the end the CSV's header names (default the
+    tip), every other field at its default."""
+    path = Path(csv_path)
+    data = Located()
+    data.file, data.line, data.key_pos, data.value_pos = str(path), 1, {}, {}
+    raw = read_hits_bytes(path)
+    head = next((ln for ln in decode_text(raw, str(path)).splitlines()
+                 if ln.strip() and not ln.lstrip().startswith("#")), "")
+    end = re.search(r"impact_location\s*\[[^\]]*\bfrom\s+(tip|knob|pivot)\s*\]", head)
+    defaults = {f.name: f.default for f in SESSION_SCHEMA.fields}
+    return spec_from(SessionSpec, {**defaults, "name": f"hits {path.name}", "bat": bat,
+                                   "ball": ball, "pivot": pivot, "hits": path.name,
+                                   "location_from": end.group(1) if end else "tip"},
+                     source=Source(str(path), sha256_of(raw), data))
+
+
+def load_session(path: str | Path) -> SessionSpec:
+    data = load_yaml(path)
+    values = load_checked(path, SESSION_SCHEMA, data)
+    return spec_from(SessionSpec, values, source=Source.of(path, data))

@@ -103,8 +103,9 @@ def test_row_per_condition(md):
     headers, rows = table_after(md, "| Condition | COR e |")
     assert headers[-1] == "Metric: BPF"
     assert [r[0] for r in rows] == [c.name for c in result.conditions]
+    bpf = headers.index("BPF")  # the metric columns follow the metric registry's order
     for row, c in zip(rows, result.conditions, strict=True):
-        assert row[3] == f"{c.bpf:.4f}" and row[-1] == f"{c.metric_value:.4f}"
+        assert row[bpf] == f"{c.bpf:.4f}" and row[-1] == f"{c.metric_value:.4f}"
 
     headers, rows = table_after(md, "| Condition | Centre of percussion |")
     assert len(rows) == len(result.conditions)

@@ -124,3 +124,4 @@ def test_every_kind_is_documented_and_disk_kinds_have_folders():
     folders = [k.folder for k in workspace.KINDS.values() if k.folder is not None]
     assert len(folders) == len(set(folders))
     assert all(k.size > 0 and k.what for k in workspace.KINDS.values())
+

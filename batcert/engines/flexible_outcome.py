@@ -12,7 +12,6 @@ import numpy as np
 from batcert.engines.base import ImpactOutcome, Job
 from batcert.engines.flexible_system import Extras, rigid_mode_velocities
 from batcert.physics import rigid
-from batcert.physics.balls.hysteresis import PowerLawHysteresis, compression_cor
 from batcert.physics.linear_system import LinearSystem
 from batcert.physics.march import Separation
 
@@ -46,15 +45,11 @@ def outcome(ready: Prepared, sep: Separation, ball_loss: str, record_states: boo
             "max_compression": sep.max_compression, "vibrational_energy": energy.sum(1),
             "approach_energy": 0.5 * ball.mass / (1 + k) * batch.relative_speed**2,
             "separated": sep.separated}
-    law = ball.law
-    if isinstance(law, PowerLawHysteresis):  # the energy in closed form, and e0
-        k1 = law.k1 * extras.contact_scale
-        e0 = (compression_cor(law, ball.mass, sep.max_compression, k1)
-              if ball_loss == "compression"
-              else np.asarray(law.cor_at(batch.relative_speed), dtype=float))
-        stored = k1 * sep.max_compression ** (1 + law.alpha) / (1 + law.alpha)
-        diag.update(ball_energy_loss=stored * (1 - e0**2), e0=e0)
-    else:
+    closed = ball.law.separation_loss(ball.mass, sep.max_compression, extras.contact_scale,
+                                      batch.relative_speed, ball_loss)
+    if closed is not None:  # the energy in closed form, and e0 (Nathan's law)
+        diag.update(closed)
+    else:  # measured by the integration (the viscoelastic law)
         diag["ball_energy_loss"] = sep.absorbed
     if system.shell_columns is not None:
         diag["barrel_energy"] = energy[:, system.shell_columns].sum(1)

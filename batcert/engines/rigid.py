@@ -7,7 +7,7 @@ import numpy as np
 from batcert.engines.base import ImpactBatch, ImpactOutcome, Job
 from batcert.physics import rigid
 from batcert.physics.ball import BallModel
-from batcert.physics.balls import footprint
+from batcert.physics.balls import LAWS, footprint
 from batcert.physics.batmodel import BatModel
 
 BALL_LOSS = ("compression", "relative-speed")
@@ -76,7 +76,7 @@ def _body_cor(ball: BallModel, speed, recoil, scale, rule: str) -> np.ndarray:
     conditions repeat speeds and recoil factors)."""
     speed, recoil = np.broadcast_arrays(np.asarray(speed, float), np.asarray(recoil, float))
     scale = np.broadcast_to(np.asarray(scale, float), speed.shape)
-    if hasattr(ball.law, "cor_at"):  # Nathan's law: closed form, the surface does not matter
+    if LAWS[ball.law.name].closed_form_cor:  # Nathan's law: the surface does not matter
         return ball.law.body_cor(ball.mass, speed, recoil, rule)
     key = np.stack([speed.ravel(), recoil.ravel(), scale.ravel()], axis=1)
     unique, which = np.unique(key, axis=0, return_inverse=True)

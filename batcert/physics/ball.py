@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from batcert.physics.balls import PowerLawHysteresis, Viscoelastic
+from batcert.physics.balls.law import ContactLaw
 
 
 @dataclass(frozen=True)
@@ -14,7 +14,7 @@ class BallModel:
     name: str
     mass: float  # [kg]
     radius: float  # [m]
-    law: PowerLawHysteresis | Viscoelastic  # contact law with its parameters
+    law: ContactLaw  # contact law with its parameters (batcert.physics.balls.LAWS)
 
     def cor(self, speed: np.ndarray | float) -> np.ndarray | float:
         """Rigid-wall COR at normal impact speed ``speed`` [m/s] (the law's: the spec's points

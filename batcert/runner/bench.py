@@ -19,6 +19,7 @@ import numpy as np
 from batcert.engines.base import Engine, ImpactBatch, ImpactOutcome, Job
 from batcert.methods.metrics import ImpactMetrics, impact_metrics
 from batcert.model.build import BuiltBat
+from batcert.physics.balls import LAWS
 from batcert.runner.conditions import Condition
 from batcert.specs.ball import BallSpec
 
@@ -126,7 +127,7 @@ def _ball_cors(requests: list[Request]) -> list[np.ndarray | None]:
 
     out: list[np.ndarray | None] = [None] * len(requests)
     integrated = [k for k, req in enumerate(requests)
-                  if not hasattr(req.bench.ball.model.law, "cor_at")]
+                  if not LAWS[req.bench.ball.model.law.name].closed_form_cor]
     distinct: dict[tuple, int] = {}
     for k in integrated:
         ball = requests[k].bench.ball.model

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from batcert.errors import InputError, Problem
+from batcert.physics.balls import LAWS
 from batcert.specs.ball import BallSpec
 from batcert.specs.bat import BatSpec
 from batcert.units import si_unit
@@ -91,7 +92,7 @@ def stated_inputs(bat: BatSpec, balls: list[BallSpec]) -> list[StatedInput]:
         cors = [p.value for key, p in ball.tests if key == "cor"]
         if any(_u(e) > 0 for e in cors):
             line = ball.source.line("cor")
-            if ball.fit is None and not hasattr(b.law, "cor_values"):
+            if ball.fit is None and not LAWS[b.law.name].cor_parameters:
                 raise InputError([Problem(ball.path, line, "cor", "the COR's uncertainty moves "
                                           "Nathan's law or a fitted viscoelastic ball; this "
                                           "ball's law is stated by its parameters, which the "

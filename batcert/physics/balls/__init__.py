@@ -22,27 +22,35 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from batcert.physics.balls.hysteresis import PowerLawHysteresis
+from batcert.physics.balls.law import ContactLaw
 from batcert.physics.balls.viscoelastic import Viscoelastic
 
-__all__ = ["LAWS", "LawEntry", "PowerLawHysteresis", "Viscoelastic"]
+__all__ = ["LAWS", "ContactLaw", "LawEntry", "PowerLawHysteresis", "Viscoelastic"]
 
 
 @dataclass(frozen=True)
 class LawEntry:
-    """One contact law: its name (the ball file's ``contact.model``), its parameter class, a
-    display word and a line of documentation."""
+    """One contact law: its name (the ball file's ``contact.model``), its parameter class
+    (a :class:`~batcert.physics.balls.law.ContactLaw`), a display word, a line of documentation,
+    and what the engines, the runner and the uncertainty need to know of it."""
 
     name: str
     law: type
     title: str
     doc: str
+    # its COR against a rigid body comes in closed form (no integration: the rigid engine and
+    # the runner read it per impact)
+    closed_form_cor: bool = False
+    # the ball file's COR points are its parameters (a stated uncertainty on them moves it)
+    cor_parameters: bool = False
 
 
 LAWS: dict[str, LawEntry] = {
     PowerLawHysteresis.name: LawEntry(
         PowerLawHysteresis.name, PowerLawHysteresis, "power-law hysteresis (Nathan 2000)",
         "F = k1 u^alpha on compression, k2 u^beta on restitution, beta = (1 + alpha)/e0^2 - 1; "
-        "e0 from the ball's COR points: a loss that does not depend on the rate"),
+        "e0 from the ball's COR points: a loss that does not depend on the rate",
+        closed_form_cor=True, cor_parameters=True),
     Viscoelastic.name: LawEntry(
         Viscoelastic.name, Viscoelastic, "viscoelastic (standard linear solid)",
         "F = k0 u^a - k1 s, ds/dt = (u^a - s)/tau, F >= 0: the loss follows the rate of the "

@@ -183,6 +183,18 @@ class PowerLawHysteresis:
         mu = mass / (1.0 + np.asarray(recoil, dtype=float))
         return contact_time_estimate(speed, mu, self.k1, self.alpha)
 
+    def separation_loss(self, mass: float, max_compression, scale, relative_speed,
+                        rule: str) -> dict[str, np.ndarray]:
+        """The energy the ball lost [J] and its ``e0`` in closed form: the loop of an impact
+        that compressed it to ``max_compression`` on a surface of stiffness factor ``scale``
+        stores ``k1 u^(1 + alpha) / (1 + alpha)`` and loses ``1 - e0^2`` of it, ``e0`` by
+        ``rule`` (:func:`compression_cor`, or the COR at ``relative_speed``)."""
+        k1 = self.k1 * scale
+        e0 = (compression_cor(self, mass, max_compression, k1) if rule == "compression"
+              else np.asarray(self.cor_at(relative_speed), dtype=float))
+        stored = k1 * max_compression ** (1 + self.alpha) / (1 + self.alpha)
+        return {"ball_energy_loss": stored * (1 - e0**2), "e0": e0}
+
     def describe(self) -> dict:
         """The parameters (SI) for reports and ``inspect``."""
         return {"model": self.name, "k1": self.k1, "alpha": self.alpha,

@@ -29,7 +29,7 @@ class ContactLaw(Protocol):
         ...
 
     def body_impact(self, mass: float, speed, recoil=0.0, history: bool = True, scale=1.0,
-                    steps: int | None = None) -> Any:
+                    rule: str = "compression", steps: int | None = None) -> Any:
         """The ball against a rigid body, integrated (COR, contact time, compression)."""
         ...
 
@@ -52,6 +52,12 @@ class ContactLaw(Protocol):
     def march_rows(self, n: int, mass: float, scale=1.0, rule: str = "compression",
                    speed=None) -> Any:
         """Its state for ``n`` rows of a batched time integration."""
+        ...
+
+    @staticmethod
+    def state_of(laws, masses, which, scale=1.0, rule: str = "compression", speed=None) -> Any:
+        """The time-stepping state of rows of balls of this law (``which``: each row's ball
+        among ``laws``, ``masses``)."""
         ...
 
     def separation_loss(self, mass: float, max_compression: np.ndarray, scale: np.ndarray,

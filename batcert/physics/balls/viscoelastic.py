@@ -94,6 +94,12 @@ class Viscoelastic:
         """Force of a squeeze slow enough for the branch to relax: ``k_inf u^a`` [N]."""
         return self.relaxed_stiffness * np.maximum(np.asarray(u, dtype=float), 0.0) ** self.exponent
 
+    def separation_loss(self, mass: float, max_compression, scale, relative_speed,
+                        rule: str) -> None:
+        """None: the loss follows the rate of the squeeze, so the time integration measures
+        it (the flexible engine's ``absorbed``)."""
+        return None
+
     def describe(self) -> dict:
         """The parameters (SI) for reports and ``inspect``."""
         return {"model": self.name, "stiffness": self.stiffness, "exponent": self.exponent,

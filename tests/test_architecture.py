@@ -148,3 +148,28 @@ def test_no_cycles_between_layers():
         for dep in layer:
             layers.setdefault(dep, set())
     assert _cycles(layers) == []
+
+
+# "No module over about 400 lines, no function over about 60 without a reason written beside
+# it" (issue 25): a function may run longer when a comment beginning "# long" between its
+# signature and its body says why
+MODULE_LINES = 400
+FUNCTION_LINES = 62
+
+
+def test_modules_and_functions_stay_short():
+    too_long = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        source = path.read_text(encoding="utf-8")
+        lines = source.splitlines()
+        name = path.relative_to(PACKAGE.parent)
+        if len(lines) > MODULE_LINES:
+            too_long.append(f"{name}: {len(lines)} lines")
+        for node in ast.walk(ast.parse(source)):
+            if not isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
+                continue
+            length = node.end_lineno - node.lineno + 1
+            head = lines[node.lineno - 1:node.body[0].lineno]
+            if length > FUNCTION_LINES and not any(s.strip().startswith("# long") for s in head):
+                too_long.append(f"{name}:{node.lineno} {node.name}: {length} lines")
+    assert too_long == []

@@ -43,8 +43,9 @@ def use_cache(on: bool = True) -> None:
     if not on:
         workspace.current().attach(None)
         return
-    from batcert.cache import PHYSICS_CODE, ArrayStore
-    workspace.current().attach(lambda folder: ArrayStore(folder, PHYSICS_CODE))
+    from batcert.cache import PHYSICS_CODE, ArrayStore, Fingerprint
+    code = Fingerprint(PHYSICS_CODE)  # one for every store, read when a store first needs it
+    workspace.current().attach(lambda folder: ArrayStore(folder, code))
 
 
 def _ready() -> None:

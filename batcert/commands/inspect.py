@@ -78,7 +78,7 @@ def inspect_ball(ball: BallSpec, speeds=(1.0, 11.0, 25.9, 26.8, 45.0, 58.0, 60.8
                "parameter_uncertainty": dict(ball.fit.uncertainty)}
     return rounded({"name": b.name, "file": ball.path, "sha256": ball.sha256, "mass": b.mass,
                     "radius": b.radius, "contact_model": b.contact_model,
-                    "law": b.law.describe(), "fit": fit, "tests": rows,
+                    "law": {**b.law.describe(), "summary": b.law.summary()}, "fit": fit, "tests": rows,
                     "speeds": list(map(float, speeds)), "cor": wall.cor.tolist(),
                     "contact_time": wall.contact_time.tolist(),
                     "collision_time": wall.collision_time.tolist(),

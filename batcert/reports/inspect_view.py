@@ -50,15 +50,8 @@ _TEST_UNITS = {"cor": ("", 1.0, "{:.3f}"), "cylinder_cor": ("", 1.0, "{:.3f}"),
 def ball_view(info: dict) -> list[Block]:
     """``inspect``'s view of a ball (:func:`batcert.commands.inspect.inspect_ball`'s dict)."""
     out: list[Block] = []
-    law = info["law"]
-    if law["model"] == "viscoelastic":
-        what = (f"viscoelastic: k0 = {law['stiffness']:.4g} N/m^a, a = {law['exponent']:.4g}, "
-                f"k_inf / k0 = {law['relaxed_fraction']:.3g}, tau = "
-                f"{law['relaxation_time'] * 1e6:.1f} us")
-    else:
-        what = f"power-law hysteresis: k1 = {law['k1']:.4g} N/m^alpha, alpha = {law['alpha']:g}"
     rows = [("mass", str(show(info["mass"], "mass", 4))),
-            ("radius", f"{info['radius'] * 1e3:.1f} mm"), ("contact law", what)]
+            ("radius", f"{info['radius'] * 1e3:.1f} mm"), ("contact law", info["law"]["summary"])]
     fit = info.get("fit")
     if fit:
         u = fit["parameter_uncertainty"]

@@ -20,7 +20,7 @@ from typing import Any
 
 from batcert.errors import Collector, InputError, Problem
 from batcert.physics.ball import BallModel
-from batcert.physics.balls import LAWS, PowerLawHysteresis, Viscoelastic
+from batcert.physics.balls import LAWS, ContactLaw, PowerLawHysteresis, Viscoelastic
 from batcert.physics.balls.fit import BallFit, BallTest, FitError, cached_fit
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked
 from batcert.specs.schema import (
@@ -259,7 +259,7 @@ def load_ball(path: str | Path) -> BallSpec:
     fit = None
     if c["model"] == "power-law-hysteresis":
         cor = v["cor"]
-        law: PowerLawHysteresis | Viscoelastic = PowerLawHysteresis(
+        law: ContactLaw = PowerLawHysteresis(
             c["k1"], c["alpha"], tuple(p.condition for p in cor), tuple(p.value for p in cor))
     elif c["stiffness"] is not None:
         law = Viscoelastic(c["stiffness"], c["exponent"], c["relaxed_fraction"],

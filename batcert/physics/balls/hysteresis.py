@@ -195,6 +195,10 @@ class PowerLawHysteresis:
         stored = k1 * max_compression ** (1 + self.alpha) / (1 + self.alpha)
         return {"ball_energy_loss": stored * (1 - e0**2), "e0": e0}
 
+    def summary(self) -> str:
+        """The law and its parameters in one line (``inspect``)."""
+        return f"power-law hysteresis: k1 = {self.k1:.4g} N/m^alpha, alpha = {self.alpha:g}"
+
     def describe(self) -> dict:
         """The parameters (SI) for reports and ``inspect``."""
         return {"model": self.name, "k1": self.k1, "alpha": self.alpha,

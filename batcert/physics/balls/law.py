@@ -45,6 +45,10 @@ class ContactLaw(Protocol):
         """The force of a slow squeeze to compression ``u`` [N] (the compression test)."""
         ...
 
+    def summary(self) -> str:
+        """The law and its parameters in one line (``inspect``)."""
+        ...
+
     def describe(self) -> dict:
         """Its parameters for reports and JSON."""
         ...

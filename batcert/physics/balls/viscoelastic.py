@@ -100,6 +100,12 @@ class Viscoelastic:
         it (the flexible engine's ``absorbed``)."""
         return None
 
+    def summary(self) -> str:
+        """The law and its parameters in one line (``inspect``)."""
+        return (f"viscoelastic: k0 = {self.stiffness:.4g} N/m^a, a = {self.exponent:.4g}, "
+                f"k_inf / k0 = {self.relaxed_fraction:.3g}, tau = "
+                f"{self.relaxation_time * 1e6:.1f} us")
+
     def describe(self) -> dict:
         """The parameters (SI) for reports and ``inspect``."""
         return {"model": self.name, "stiffness": self.stiffness, "exponent": self.exponent,

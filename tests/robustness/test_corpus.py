@@ -32,6 +32,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from batcert.cli import main
+from batcert.sweeps import execute
 
 sys.path.insert(0, str(Path(__file__).parent))
 import corpus  # noqa: E402  (the corpus lives beside this test)
@@ -222,6 +223,9 @@ def run_case(case: corpus.Case, where: Path, monkeypatch) -> list[str]:
     user_text = "\n".join(c.decode("utf-8", "replace") if isinstance(c, bytes) else c
                            for c in [case.content, *case.files.values()])
     monkeypatch.chdir(where)
+    # a --scheduler that answers nothing is refused after 1 s instead of execute's 10 s (as in
+    # tests/sweeps/test_distributed.py): the same exit 5 and one line, 9 s sooner
+    monkeypatch.setattr(execute, "CONNECT_TIMEOUT", 1.0)
     problems = []
     old = signal.signal(signal.SIGALRM, _alarm)
     signal.alarm(TIME_LIMIT)

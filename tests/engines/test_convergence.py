@@ -28,9 +28,7 @@ def _assert_defaults_converged(built, protocols) -> None:
             assert value == pytest.approx(limit, rel=2e-4), (p.protocol.id, value, limit)
 
 
-# the study's two bats (one solid, one hollow) run in the quick command, the others are slow
-@pytest.mark.parametrize("bat", [b if b in ("ash-34", "aluminium-34") else
-                                 pytest.param(b, marks=pytest.mark.slow) for b in BATS])
+@pytest.mark.parametrize("bat", BATS)
 def test_defaults_are_within_two_hundredths_of_a_percent_of_converged(bat):
     # Converged: 48 modes (3x), 2.5 us (1/5 of the default step), shell modes to 16 kHz;
     # refined further (64 modes, 1.25 us, 20 kHz) the results move by under 5e-6 (measured).
@@ -40,7 +38,6 @@ def test_defaults_are_within_two_hundredths_of_a_percent_of_converged(bat):
                                [load_protocol_any(name) for name in PROTOCOLS])
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("wall", [1.8e-3, 3.2e-3])
 def test_defaults_hold_for_thin_and_thick_walls(wall):
     # aluminium-34 with its wall made 1.8 and 3.2 mm (the sweeps' wall parameter). Measured

@@ -266,7 +266,7 @@ def test_the_corpus_covers_every_kind():
 # every QUICK_EVERY-th case of each category, in the corpus's order, runs in the quick command
 # (`pytest -m "not slow"`): a sample of every kind of input; the rest of the corpus is slow, and
 # so are the cases that take about a second or more each (on one idle core; most take 10-100 ms)
-QUICK_EVERY = 4
+QUICK_EVERY = 3
 HEAVY = frozenset({
     "yaml-deep-5000-name", "yaml-deep-5000-protocol", "yaml-deep-5000-flow",
     "yaml-deep-5000-profile", "yaml-alias-bomb-profile", "num-proto-pitch-1e-300ms",

@@ -28,7 +28,6 @@ def _assert_defaults_converged(built, protocols) -> None:
             assert value == pytest.approx(limit, rel=2e-4), (p.protocol.id, value, limit)
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("bat", BATS)
 def test_defaults_are_within_two_hundredths_of_a_percent_of_converged(bat):
     # Converged: 48 modes (3x), 2.5 us (1/5 of the default step), shell modes to 16 kHz;
@@ -39,7 +38,6 @@ def test_defaults_are_within_two_hundredths_of_a_percent_of_converged(bat):
                                [load_protocol_any(name) for name in PROTOCOLS])
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("wall", [1.8e-3, 3.2e-3])
 def test_defaults_hold_for_thin_and_thick_walls(wall):
     # aluminium-34 with its wall made 1.8 and 3.2 mm (the sweeps' wall parameter). Measured

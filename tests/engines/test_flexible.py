@@ -625,8 +625,10 @@ def test_input_errors(r161):
 
 # -- the viscoelastic ball --------------------------------------------------------------------
 
-@pytest.mark.slow  # a reference integration with solve_ivp, 3-13 s
-@pytest.mark.parametrize("case", ["solid", "hollow"])
+@pytest.mark.parametrize("case", [
+    "solid",  # under a second
+    pytest.param("hollow", marks=pytest.mark.slow),  # the shell's couplings afresh: 10-20 s
+])
 def test_viscoelastic_ball_agrees_with_reference_integration(r161, case):
     # The viscoelastic law's branch variable integrated with the step's exponential stages
     # (physics/balls/viscoelastic.py) and, on a hollow bat, the shell's coupling following the

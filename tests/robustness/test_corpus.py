@@ -16,6 +16,10 @@ would try. What "cleanly" means is checked by :func:`check` for every command:
 
 A case marked ``known`` (a defect found and not fixed yet) is expected to fail (strict xfail):
 remove the marker when the fix lands.
+
+Every :data:`QUICK_EVERY`-th case of each category (its first among them) runs in the quick
+command, ``pytest -m "not slow"``, unless it is one of the few :data:`HEAVY` ones; the others are
+marked ``slow``, so the two runs together cover the whole corpus, every case once.
 """
 
 from __future__ import annotations
@@ -32,6 +36,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from batcert.cli import main
+from batcert.sweeps import execute
 
 sys.path.insert(0, str(Path(__file__).parent))
 import corpus  # noqa: E402  (the corpus lives beside this test)
@@ -222,6 +227,9 @@ def run_case(case: corpus.Case, where: Path, monkeypatch) -> list[str]:
     user_text = "\n".join(c.decode("utf-8", "replace") if isinstance(c, bytes) else c
                            for c in [case.content, *case.files.values()])
     monkeypatch.chdir(where)
+    # a --scheduler that answers nothing is refused after 1 s instead of execute's 10 s (as in
+    # tests/sweeps/test_distributed.py): the same exit 5 and one line, 9 s sooner
+    monkeypatch.setattr(execute, "CONNECT_TIMEOUT", 1.0)
     problems = []
     old = signal.signal(signal.SIGALRM, _alarm)
     signal.alarm(TIME_LIMIT)
@@ -255,13 +263,33 @@ def test_the_corpus_covers_every_kind():
     assert len(CASES) >= 1032
 
 
-def _param(case: corpus.Case):
-    marks = [pytest.mark.xfail(strict=True, reason=case.known)] if case.known else []
-    return pytest.param(case, marks=marks, id=case.id)
+# every QUICK_EVERY-th case of each category, in the corpus's order, runs in the quick command
+# (`pytest -m "not slow"`): a sample of every kind of input; the rest of the corpus is slow, and
+# so are the cases that take about a second or more each (on one idle core; most take 10-100 ms)
+QUICK_EVERY = 3
+HEAVY = frozenset({
+    "yaml-deep-5000-name", "yaml-deep-5000-protocol", "yaml-deep-5000-flow",
+    "yaml-deep-5000-profile", "yaml-alias-bomb-profile", "num-proto-pitch-1e-300ms",
+    "num-relative-1e-300ms", "geo-profile-10000", "cli-compare-study-and-p", "lab-valid",
+    "lab-many-columns", "inj-figures-bat-name-mathtext", "inj-figures-proto-title-mathtext",
+    "scale-scheduler-refused",  # waits for the (shortened) connect timeout
+})
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("case", [_param(c) for c in CASES])
+def _params(cases: list[corpus.Case]) -> list:
+    assert HEAVY <= {c.id for c in cases}, "HEAVY names a case the corpus no longer has"
+    seen: dict[str, int] = {}
+    params = []
+    for case in cases:
+        place = seen[case.category] = seen.get(case.category, -1) + 1
+        marks = [pytest.mark.xfail(strict=True, reason=case.known)] if case.known else []
+        if place % QUICK_EVERY or case.id in HEAVY:
+            marks.append(pytest.mark.slow)
+        params.append(pytest.param(case, marks=marks, id=case.id))
+    return params
+
+
+@pytest.mark.parametrize("case", _params(CASES))
 def test_case_ends_cleanly(case, tmp_path, monkeypatch):
     problems = run_case(case, tmp_path, monkeypatch)
     assert not problems, f"{case.desc}:\n" + "\n".join(problems)

@@ -4,6 +4,10 @@ otherwise), two commands writing one report set at once, and damaged sweep journ
 ``--resume``. Each ends as test_corpus.check demands (no traceback, a documented exit code, an
 output-location error on one line, nothing written after exit 2 or 3), and more: no partial
 report set and no leftover temporary file, and an input is never written over.
+
+The FIFOs, the read-only disk and the journal behind a symlink run in the quick command
+(``pytest -m "not slow"``); the full disk, the two writers and the damaged journals (a sweep and
+a resumed sweep each: 26 of the 37 cases) are marked ``slow``.
 """
 
 from __future__ import annotations
@@ -23,7 +27,6 @@ from corpus import HOLLOW  # noqa: E402
 from corpus_surfaces import HITS, SESSION  # noqa: E402
 from test_corpus import REPO, Hang, _alarm, check, run_command  # noqa: E402
 
-pytestmark = pytest.mark.slow
 RIGID = ["--engine", "rigid"]
 SWEEP = ["sweep", "aluminium-34", "-p", "ncaa-bbcor", *RIGID, "--vary", "wall=90%:110%:3"]
 RUN = ["run", "ash-34", "-p", "ncaa-bbcor", *RIGID]
@@ -143,6 +146,7 @@ FULL = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("cid", sorted(FULL))
 def test_full_disk(cid, tmp_path, monkeypatch, mount_tmpfs):
     """A disk with 12 KB free: the command exits 4 with one line and leaves no partial report
@@ -185,6 +189,7 @@ def _spawn(argv: list[str], cwd: Path) -> subprocess.Popen:
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("cid", ["run", "sweep", "run-and-sweep"])
 def test_two_writers_one_out(cid, tmp_path):
     """Two commands writing into one --out at once: both end cleanly, and the directory holds
@@ -267,6 +272,7 @@ JOURNALS = ["complete", "truncated-last-line", "header-only", "header-cut", "emp
 KNOWN_JOURNALS: dict[str, str] = {}  # journal forms not yet handled cleanly (none)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("cid", [
     pytest.param(j, marks=[pytest.mark.xfail(strict=True, reason=KNOWN_JOURNALS[j])]
                  if j in KNOWN_JOURNALS else []) for j in JOURNALS])

@@ -129,7 +129,6 @@ def test_range_needs_two_ends(bbcor_052):
         run_design("ash-34", bbcor_052, "pitch_speed", "50m/s", engine="rigid")
 
 
-@pytest.mark.slow
 def test_flexible_wall_root_is_bracketed(tmp_path):
     """aluminium-34's wall under a 0.58 BBCOR limit, the shipped ball, flexible engine (about
     4 s): BBCOR falls from 0.612 at the nominal 2.7 mm (measured; 0.574 at 125 %, 0.553 at

@@ -50,7 +50,6 @@ def test_eq7_is_undefined_for_a_stationary_bat():
     assert math.isnan(rigid_sweet_spot(0.209, BALL, -31.0, 0.0))
 
 
-@pytest.mark.slow
 def test_flexible_sweet_spot_lies_in_the_barrel_and_moves_far_less_than_eq7():
     # The study's finding (DESIGN.md section 1): the sweet spot moves with swing and pitch speed
     # far less than Eq. 7 says. Checked with the flexible engine on the shipped ash bat under the

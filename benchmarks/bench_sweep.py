@@ -22,6 +22,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 def _count_impacts(plan) -> tuple[int, float]:
     """Run the plan serially, counting the impacts the engine solves; (impacts, seconds)."""
+    from batcert.engines.base import Job
     from batcert.engines.flexible import FlexibleEngine
     from batcert.engines.rigid import RigidEngine
     from batcert.sweeps.execute import execute
@@ -31,7 +32,7 @@ def _count_impacts(plan) -> tuple[int, float]:
         originals[cls] = cls.solve_many
 
         def wrapped(self, jobs, _orig=originals[cls]):
-            counted[0] += sum(j[3].impact_location.size for j in jobs)
+            counted[0] += sum(len(Job.of(j).batch) for j in jobs)
             return _orig(self, jobs)
         cls.solve_many = wrapped  # type: ignore[method-assign]
     try:

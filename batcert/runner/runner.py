@@ -235,11 +235,11 @@ def _final_steps(bench: Bench, conds: list[Condition], locations: np.ndarray, me
 def _wall_warning(conds: list[Condition], diag: dict[str, np.ndarray]) -> list[str]:
     """A hollow bat whose wall the model bends beyond where a linear wall holds
     (:data:`batcert.engines.flexible.LINEAR_WALL` thicknesses under the peak force)."""
+    ratio = diag.get("barrel_deflection_ratio")
+    if ratio is None:  # a solid bat, or the rigid engine (which need not load the flexible one)
+        return []
     from batcert.engines.flexible import LINEAR_WALL
 
-    ratio = diag.get("barrel_deflection_ratio")
-    if ratio is None:
-        return []
     out = []
     for i, c in enumerate(conds):
         r = float(np.asarray(ratio)[i, 0])

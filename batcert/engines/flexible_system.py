@@ -55,7 +55,7 @@ class Extras:
     n_bending: int  # bending modes among the system's columns (first)
     beam_rigid_mass: np.ndarray  # the rigid modes as one mass at each impact [kg], (p,)
     contact_scale: np.ndarray  # the ball law's stiffness factor on the surface [-], (p,)
-    wall: np.ndarray  # the wall's thickness at each impact [m], (p,) (0 where solid)
+    wall: np.ndarray  # the wall's thickness at each impact [m], (p,) (half the diameter where solid)
     shell_static: np.ndarray  # the barrel's static compliance under the footprint [m/N], (p,)
     n_shell: int = 0  # shell modes among the columns (after the bending modes)
     residual_omega: float = 0.0  # the residual pseudo-mode's frequency [rad/s]; 0: none
@@ -127,9 +127,7 @@ def mean_compression(ball: BallModel, speed, recoil, scale) -> np.ndarray:
 def surface(s: SystemSettings, bat: BatModel, ball: BallModel, z: np.ndarray):
     """The bat's outer radius at each impact [m], the contact surface's radius (inf: flat)
     and the ball law's stiffness factor on it [-]."""
-    edges = np.asarray(bat.z_edges, dtype=float)
-    i = np.clip(np.searchsorted(edges, z, side="right") - 1, 0, edges.size - 2)
-    radius = 0.5 * np.asarray(bat.outer_diameter, dtype=float)[i]
+    radius = 0.5 * np.asarray(bat.outer_diameter, dtype=float)[bat.slice_at(z)]
     on = radius if s.contact_surface == "cylinder" else np.full(z.size, np.inf)
     scale = np.asarray(footprint.stiffness_ratio(ball.radius, on), dtype=float)
     return radius, on, np.broadcast_to(scale, z.shape).copy()
@@ -202,14 +200,8 @@ def linear_system(s: SystemSettings, bat: BatModel, ball: BallModel, pivot: floa
                           ball_mass=np.full(z.size, ball.mass),
                           shell_columns=shell_cols if shell is not None else None,
                           coupling=coupling)
-    return system, Extras(modes, phi, n_bending, rigid_mass, patch.scale, _wall(bat, z),
-                          static, n_shell, om_res)
-
-
-def _wall(bat: BatModel, z: np.ndarray) -> np.ndarray:
-    edges = np.asarray(bat.z_edges, dtype=float)
-    i = np.clip(np.searchsorted(edges, z, side="right") - 1, 0, edges.size - 2)
-    return 0.5 * (np.asarray(bat.outer_diameter) - np.asarray(bat.inner_diameter))[i]
+    return system, Extras(modes, phi, n_bending, rigid_mass, patch.scale,
+                          bat.wall_thickness[bat.slice_at(z)], static, n_shell, om_res)
 
 
 def beam_response(bat: BatModel, modes: Modes, points: np.ndarray, weights: np.ndarray,

@@ -62,9 +62,8 @@ class RigidEngine:
         k = rigid.recoil_factor(bat, ball.mass, pivot, r, support)
         scale: float | np.ndarray = 1.0
         if self.contact_surface == "cylinder":
-            edges = np.asarray(bat.z_edges, dtype=float)
-            s = np.clip(np.searchsorted(edges, r + pivot, side="right") - 1, 0, edges.size - 2)
-            scale = footprint.stiffness_ratio(ball.radius, 0.5 * bat.outer_diameter[s])
+            scale = footprint.stiffness_ratio(ball.radius,
+                                              0.5 * bat.outer_diameter[bat.slice_at(r + pivot)])
         e = _body_cor(ball, batch.relative_speed, k, scale, self.ball_loss)
         vb = rigid.exit_speed(e, k, vp, w1 * r)
         w2, cor = rigid.momentum_outcome(bat, ball.mass, pivot, support, r, vp, w1, vb, k)

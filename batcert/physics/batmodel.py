@@ -60,6 +60,12 @@ class BatModel:
         """Wall thickness per slice [m]; half the outer diameter for solid slices."""
         return 0.5 * (self.outer_diameter - self.inner_diameter)
 
+    def slice_at(self, z) -> np.ndarray:
+        """The slice holding each point ``z`` [m from knob] (the first and last slice for
+        points off the bat's ends); an edge belongs to the slice it starts."""
+        edges = np.asarray(self.z_edges, dtype=float)
+        return np.clip(np.searchsorted(edges, z, side="right") - 1, 0, edges.size - 2)
+
     @property
     def slice_masses(self) -> np.ndarray:
         return self.linear_density * self.dz

@@ -159,9 +159,7 @@ def element_slices(bat: BatModel, nodes: np.ndarray) -> np.ndarray:
     """The slice each element of the mesh ``nodes`` takes its properties from: the slice
     holding its midpoint, (elements,)."""
     z = np.asarray(nodes, dtype=float)
-    edges = np.asarray(bat.z_edges, dtype=float)
-    mid = 0.5 * (z[1:] + z[:-1])
-    return np.clip(np.searchsorted(edges, mid, side="right") - 1, 0, edges.size - 2)
+    return bat.slice_at(0.5 * (z[1:] + z[:-1]))
 
 
 def element_dofs(nodes: np.ndarray) -> np.ndarray:

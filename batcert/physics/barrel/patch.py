@@ -75,9 +75,7 @@ def _w_load(shell: ShellOfRevolution, points: np.ndarray, weights: np.ndarray) -
 
 def patch_half_angle(bat: BatModel, z: np.ndarray, half_length: np.ndarray) -> np.ndarray:
     """Half-angle [rad] of the ball's contact arc, ``a / R_outer`` at each impact, at most pi/2."""
-    edges = np.asarray(bat.z_edges, dtype=float)
-    s = np.clip(np.searchsorted(edges, z, side="right") - 1, 0, edges.size - 2)
-    return np.minimum(half_length / (0.5 * bat.outer_diameter[s]), 0.5 * np.pi)
+    return np.minimum(half_length / (0.5 * bat.outer_diameter[bat.slice_at(z)]), 0.5 * np.pi)
 
 
 @dataclass(frozen=True)

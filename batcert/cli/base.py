@@ -305,6 +305,17 @@ def _deliver(result, summary, target, fmts, as_json: bool) -> None:
             summary(results[0], paths[0])
     _write_then_show([result], target, fmts, show)
 
+def _finish(result, summary, target, fmts, as_json: bool, clock, figures_dir: Path | None = None,
+            code: int | None = None) -> None:
+    """A command's end: deliver the result (:func:`_deliver`), write its figures, time the
+    reports, and exit with ``code`` (default: the result's own)."""
+    _deliver(result, summary, target, fmts, as_json)
+    _figures(result, figures_dir)
+    clock.lap("reports")
+    clock.report()
+    sys.exit(result.return_code() if code is None else code)
+
+
 def _counter(bar, what: str = "variants"):
     def on_progress(done: int, total: int) -> None:
         bar.count(done, total, what)

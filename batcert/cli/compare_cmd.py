@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import sys
-
 import click
 
 from batcert import console
@@ -13,8 +11,7 @@ from batcert.cli.base import (
     _check_figures_dir,
     _Clock,
     _complete,
-    _deliver,
-    _figures,
+    _finish,
     _formats,
     _guard,
     _output_options,
@@ -73,11 +70,7 @@ def compare(bats, protocols, study, reference, engine, out_dir, formats, no_repo
         result = run_comparison(list(bats), list(protocols), study, reference, engine,
                                 on_step=_stepper(bar))
     clock.lap("inputs and engine")
-    _deliver(result, console.comparison_summary, target, fmts, as_json)
-    _figures(result, figures_dir)
-    clock.lap("reports")
-    clock.report()
-    sys.exit(result.return_code())
+    _finish(result, console.comparison_summary, target, fmts, as_json, clock, figures_dir)
 
 
 @main.command(epilog=LEAGUE_EXIT_CODES + """
@@ -103,7 +96,5 @@ def league(league_id, bats, engine, allow_not_modelled, out_dir, formats, no_rep
     with console.progress("checking the rules") as bar:
         result = run_league(league_id, list(bats), engine, on_step=_stepper(bar))
     clock.lap("inputs and engine")
-    _deliver(result, console.league_summary, target, fmts, as_json)
-    clock.lap("reports")
-    clock.report()
-    sys.exit(result.return_code(allow_not_modelled))
+    _finish(result, console.league_summary, target, fmts, as_json, clock,
+            code=result.return_code(allow_not_modelled))

@@ -17,6 +17,7 @@ from batcert.cli.base import (
     _counter,
     _deliver,
     _figures,
+    _finish,
     _formats,
     _guard,
     _output_options,
@@ -169,8 +170,4 @@ def design(bat, protocol, parameter, range_text, points, tolerance, workers, sch
         result = run_design(bat, protocol, parameter, range_text, engine, points, tolerance,
                             _counter(bar), workers, scheduler)
     clock.lap("engine")
-    _deliver(result, console.sweep_summary, target, fmts, as_json)
-    _figures(result, figures_dir)
-    clock.lap("reports")
-    clock.report()
-    sys.exit(result.return_code())
+    _finish(result, console.sweep_summary, target, fmts, as_json, clock, figures_dir)

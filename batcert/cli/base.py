@@ -329,9 +329,11 @@ def entry() -> None:
 
     Freeing every module and object at exit costs 15-25 ms after numpy, jinja2 and the specs
     are loaded (measured: ``import numpy`` alone 94 ms with teardown, 74 ms without), a tenth of
-    a rigid run, and does nothing a finished command needs. What exit does that matters still
-    happens first: the ``atexit`` handlers run (temporary-file finalisers, logging, a profiler's
-    save) and stdout and stderr are flushed. The reports are closed and renamed before
+    a rigid run, and 55-75 ms once a run has loaded scipy too (benchmarks/bench_exit.py, 2-core
+    machine, 2026-11-26: about 0.6 of ``python -c "import numpy"``), and does nothing a
+    finished command needs. What exit does that matters still happens first: the ``atexit``
+    handlers run (temporary-file finalisers, logging, a profiler's save) and stdout and stderr
+    are flushed. The reports are closed and renamed before
     ``main`` returns (:mod:`batcert.reports.write`). While any other thread is alive (a pool
     still winding down, a client's connection) the normal exit is used, which waits for the
     threads that must be waited for."""
@@ -342,12 +344,9 @@ def entry() -> None:
 
 
 def _exit_now(code) -> None:
-    """Leave with ``code`` as ``sys.exit`` would, but without the interpreter's shutdown: the
-    exit handlers run and the streams are flushed, then ``os._exit``. The reason is measured
-    (benchmarks/bench_exit.py, 2-core machine, 2026-11-26): tearing down the modules a run
-    loads (numpy, scipy) costs 60-75 ms per command, about 0.6 of ``python -c "import
-    numpy"``, against a target of 2.5 of it for a whole ``run``. With other threads alive (a
-    sweep's pool) the normal exit is taken."""
+    """Leave with ``code`` as ``sys.exit`` would, but without the interpreter's shutdown
+    (:func:`entry` says why): the exit handlers run and the streams are flushed, then
+    ``os._exit``; with other threads alive the normal exit is taken."""
     import atexit
     import threading
     run_exit_handlers = getattr(atexit, "_run_exitfuncs", None)

@@ -1,13 +1,6 @@
-r"""A hollow bat's wall as a thin shell of revolution, and its modes and static flexibility.
-
-The wall of a hollow bat (every contiguous hollow slice around the largest diameter: handle,
-taper, barrel) is a shell of revolution (:mod:`batcert.physics.shell`) with the bat's mid-surface
-radius, wall and reconciled density along it, and its ends held round by the knob and the end
-cap (``closed``) or left open (``BatModel.barrel_end``). Its deformation is expanded in
-circumferential orders: ``n = 1`` moves each cross-section as a whole and is the beam's bending
-(:mod:`batcert.physics.beam`), so the barrel contributes the orders ``n = 0`` (breathing) and
-``n >= 2`` (ovalling and higher). These are orthogonal to the beam's motion, so the two add
-without counting any mass twice. :mod:`batcert.physics.barrel` has the whole story.
+r"""A hollow bat's wall as a thin shell of revolution (:func:`barrel_shell`), and its modes and
+static flexibility (:func:`compute_barrel_modes`, kept by the workspace:
+:func:`cached_barrel_modes`); the model is in :mod:`batcert.physics.barrel`'s notes.
 """
 
 from __future__ import annotations

@@ -20,6 +20,7 @@ from batcert.results.league import BatLeagueResult, LeagueResult, RuleResult
 from batcert.results.run import RunResult
 from batcert.results.serialise import utc_now
 from batcert.specs.kinds import RULE_KINDS
+from batcert.specs.materials import PLIES
 from batcert.units import INCH, OUNCE
 from batcert.version import __version__
 
@@ -31,7 +32,7 @@ _REL = 1e-9  # comparisons allow this relative rounding (a 2.61 in barrel meets 
 
 # Library materials by class; inline materials are classed from words in their name.
 MATERIAL_CLASS = {"ash": "wood", "ash-bat": "wood", "maple": "wood", "birch": "wood",
-                  "aluminium-7050": "metal"}
+                  "aluminium-7050": "metal", **{name: "composite" for name in PLIES}}
 _CLASS_WORDS = {
     "wood": ("wood", "ash", "maple", "birch", "bamboo", "hickory", "beech"),
     "metal": ("aluminium", "aluminum", "alloy", "steel", "titanium", "scandium"),
@@ -76,10 +77,27 @@ class BatFacts:
 def bat_facts(built: BuiltBat) -> BatFacts:
     """Facts of a :class:`~batcert.model.build.BuiltBat` (reads the reconciled model)."""
     m = built.model
-    cls, basis = material_class(m.material.name)
+    name, cls, basis = barrel_material(m)
     return BatFacts(built.spec.name, built.spec.path, built.spec.sha256, m.length, m.mass,
                     float(m.outer_diameter.max()), float(m.outer_diameter.min()),
-                    m.construction, m.material.name, cls, basis)
+                    m.construction, name, cls, basis)
+
+
+def barrel_material(m) -> tuple[str, str | None, str]:
+    """The material of the barrel (the widest slice; league rules on material concern it),
+    its class and how that was decided: a layup's plies there (composite if any ply is, so a
+    hybrid with a composite barrel is composite), else the bat's material."""
+    i = int(m.outer_diameter.argmax())
+    stack = m.layup.stack_of(i) if m.layup is not None else None
+    if stack is None:
+        return (m.material.name, *material_class(m.material.name))
+    names = list(dict.fromkeys(layer.ply.name for wall in stack.walls for layer in wall))
+    classes = {material_class(n)[0] for n in names}
+    cls = "composite" if "composite" in classes else (classes.pop() if len(classes) == 1
+                                                      else None)
+    walls = f", {len(stack.walls)} walls" if len(stack.walls) > 1 else ""
+    return (f"{' + '.join(names)} layup{walls}", cls,
+            f"the barrel's layup ({', '.join(names)}{walls})")
 
 
 # ---------------------------------------------------------------- evaluators

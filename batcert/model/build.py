@@ -11,12 +11,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from batcert.conventions import STANDARD_GRAVITY
 from batcert.errors import ModelError
 from batcert.model.calibrate import calibrate_barrel, calibrate_stiffness
-from batcert.model.geometry import build_geometry
+from batcert.model.geometry import build_geometry, stack_material
 from batcert.model.reconcile import MeasuredMassProperties, Reconciliation, reconcile
-from batcert.physics.batmodel import BatModel
+from batcert.physics.batmodel import BatModel, Material
 from batcert.specs.bat import BatSpec, MeasuredSpec
 
 
@@ -62,8 +64,21 @@ def _barrel_text(corr: dict[str, float]) -> str:
     return text + " to match " + " and ".join(sources)
 
 
+def _material(spec: BatSpec) -> Material:
+    """The bat's material; where a layup covers the whole bat and none is given, that of the
+    span holding the largest diameter (:func:`stack_material`)."""
+    if spec.material is not None:
+        return spec.material
+    z, d = spec.profile
+    widest = z[int(np.argmax(d))]
+    for start, end, stack in spec.layup:
+        if start <= widest <= end:
+            return stack_material(stack)
+    return stack_material(spec.layup[-1][2])
+
+
 def _wall_stations(spec: BatSpec):
-    if spec.construction != "hollow":
+    if spec.construction != "hollow" or spec.wall is None:
         return None, None
     if isinstance(spec.wall, tuple):
         return spec.wall
@@ -76,8 +91,8 @@ def build_bat(spec: BatSpec) -> BuiltBat:
         wall_z, wall_t = _wall_stations(spec)
         geometry = build_geometry(
             spec.name, spec.construction, spec.length, spec.profile[0], spec.profile[1],
-            spec.material, wall_z, wall_t, spec.knob_mass, spec.end_cap_mass,
-            spec.shear_correction, spec.slice_length, spec.barrel_end)
+            _material(spec), wall_z, wall_t, spec.knob_mass, spec.end_cap_mass,
+            spec.shear_correction, spec.slice_length, spec.barrel_end, spec.layup)
         meas = measured_properties(spec.measured) if spec.measured else None
         model, rec = reconcile(geometry, meas, spec.reconcile)
         freq = spec.measured.first_bending_frequency if spec.measured else None

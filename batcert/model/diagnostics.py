@@ -28,7 +28,7 @@ def barrel_summary(built: BuiltBat) -> dict:
     full-diameter barrel, the model's lowest frequencies per circumferential order (free bat), the hoop
     (n = 2) frequency against the measured one, the thin-ring frequency for comparison, and
     the calibration applied."""
-    from batcert.physics import barrel, shell
+    from batcert.physics import barrel
     m = built.model
     sh = barrel.barrel_shell(m)
     assert sh is not None  # a hollow bat has a wall
@@ -46,10 +46,24 @@ def barrel_summary(built: BuiltBat) -> dict:
             "outer_diameter": outer, "wall": wall,
             "hoop_frequency_hz": barrel.hoop_frequency(m),
             "measured_hoop_frequency_hz": measured.hoop_frequency if measured else None,
-            "ring_frequency_hz": float(shell.ring_frequency(
-                0.5 * (outer - wall), wall, m.material.youngs_modulus * m.barrel_stiffness_scale,
-                m.material.density * m.barrel_mass_scale, m.material.poisson_ratio)),
+            "ring_frequency_hz": _ring(m, i),
             "modes_hz": orders, "stiffness_scale": m.barrel_stiffness_scale,
             "mass_scale": m.barrel_mass_scale,
             "calibrated": bool(measured and (measured.hoop_frequency is not None
                                              or measured.barrel_compression is not None))}
+
+
+def _ring(m, i: int) -> float:
+    """The thin-ring frequency of slice ``i``'s wall (its layup's ``D22`` and nominal mass per
+    area where it has one, else the material's), with the barrel's calibration [Hz]."""
+    from batcert.physics import shell
+    wall, outer = float(m.wall_thickness[i]), float(m.outer_diameter[i])
+    stack = m.layup.stack_of(i) if m.layup is not None else None
+    if stack is None:
+        return float(shell.ring_frequency(
+            0.5 * (outer - wall), wall, m.material.youngs_modulus * m.barrel_stiffness_scale,
+            m.material.density * m.barrel_mass_scale, m.material.poisson_ratio))
+    areal = sum(lam.areal_density for lam in stack.laminates())
+    return float(shell.ring_frequency_of(0.5 * (outer - wall),
+                                         stack.law(m.wall_damage)[4, 4] * m.barrel_stiffness_scale,
+                                         areal * m.barrel_mass_scale))

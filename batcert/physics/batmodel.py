@@ -11,6 +11,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from batcert.physics.laminate import WallStack
+
 
 @dataclass(frozen=True)
 class Material:
@@ -20,6 +22,20 @@ class Material:
     shear_modulus: float  # [Pa]
     poisson_ratio: float  # [-]
     loss_factor: float = 0.0  # structural loss factor eta [-]; modal damping ratio = eta / 2
+
+
+@dataclass(frozen=True)
+class Layup:
+    """The laminated or multi-wall parts of a hollow bat: ``index[i]`` is the stack
+    (:class:`~batcert.physics.laminate.WallStack`) of ``stacks`` whose wall slice ``i`` has, or
+    -1 where the wall is the bat's ``material``."""
+
+    stacks: tuple[WallStack, ...]
+    index: np.ndarray  # per slice, (n,) int
+
+    def stack_of(self, i: int) -> WallStack | None:
+        k = int(self.index[i])
+        return None if k < 0 else self.stacks[k]
 
 
 @dataclass(frozen=True)
@@ -44,6 +60,8 @@ class BatModel:
     barrel_mass_scale: float = 1.0  # on the wall's density in the shell [-]
     barrel_end: str = "closed"
     extras: dict = field(default_factory=dict)
+    layup: Layup | None = None  # hollow bats: their laminated or multi-wall slices
+    wall_damage: float = 0.0  # break-in of the layup's plies (batcert.physics.laminate) [-]
 
     @property
     def z_mid(self) -> np.ndarray:

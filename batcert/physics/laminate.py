@@ -11,13 +11,29 @@ are listed from the inner surface outward. Each ply is in plane stress with the 
 turned to the wall's axes (``Qbar``, e.g. R. M. Jones, Mechanics of Composite Materials, 2nd
 ed., 1999, Eq. 2.85), and the wall's resultants are ``N = A eps + B kappa``,
 ``M = B eps + D kappa`` with ``(A, B, D) = sum_k Qbar_k (z_k - z_(k-1), (z_k^2 - z_(k-1)^2) / 2,
-(z_k^3 - z_(k-1)^3) / 3)`` (engineering shear strain; Jones Eq. 4.24). Not yet used by the
-shell: what a laminate does to the barrel's modes is the rest of issue 26.
+(z_k^3 - z_(k-1)^3) / 3)`` (engineering shear strain; Jones Eq. 4.24).
+
+A *balanced* layer holds fibres at ``+angle`` and ``-angle`` interlaced at the same depth, as
+filament winding and biaxial braiding lay them: its ``Qbar`` is the mean of the two, which has
+no shear coupling (``Qbar16 = Qbar26 = 0``). A single off-axis ply has it, and so does a stack
+of them unless balanced at every depth; the shell of revolution refuses such a wall
+(:mod:`batcert.physics.shell_element`).
+
+Several concentric walls (:class:`WallStack`, a multi-wall barrel) slide on one another: each
+bends about its own mid-surface, so the stack's ``D`` is the sum of the walls' (not the bonded
+stack's, which would add each wall's ``A`` times the square of its offset), and so are ``A``
+and ``B``. All walls share the normal displacement (they stay in contact) and the mid-surface
+strains of the reference surface (the stack's middle); the walls' different radii are not
+distinguished in the shell.
+
+Break-in (:func:`broken_in`): use softens the matrix, not the fibres. A damage ``d`` scales
+the matrix-dominated moduli ``E2`` and ``G12`` of every ply that breaks in (fibre composites;
+not a metal given as a ply) by ``1 - d``.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -32,6 +48,8 @@ class OrthotropicPly:
     g12: float  # in-plane shear [Pa]
     nu12: float  # strain across per strain along, under stress along [-]
     density: float  # [kg/m^3]
+    loss_factor: float = 0.0  # structural loss factor along the fibres [-]
+    breaks_in: bool = True  # whether use softens E2 and G12 (a fibre composite) [-]
 
     def __post_init__(self) -> None:
         if not (self.e1 > 0 and self.e2 > 0 and self.g12 > 0 and self.density > 0):
@@ -49,13 +67,43 @@ class OrthotropicPly:
                          [0.0, 0.0, self.g12]])
 
 
+    @classmethod
+    def isotropic(cls, name: str, youngs_modulus: float, poisson_ratio: float, density: float,
+                  loss_factor: float = 0.0) -> OrthotropicPly:
+        """An isotropic material (a metal) as a ply: ``E1 = E2``, ``G12 = E / (2 (1 + nu))``,
+        and no break-in."""
+        e, nu = youngs_modulus, poisson_ratio
+        return cls(name, e, e, e / (2 * (1 + nu)), nu, density, loss_factor, breaks_in=False)
+
+
 @dataclass(frozen=True)
 class Layer:
-    """One ply of a wall: its material, fibre angle from the bat's axis [rad], thickness [m]."""
+    """One ply of a wall: its material, fibre angle from the bat's axis [rad], thickness [m];
+    ``balanced``: fibres at ``+angle`` and ``-angle`` interlaced (module notes)."""
 
     ply: OrthotropicPly
     angle: float  # [rad], from x (along the bat) toward y (around it)
     thickness: float  # [m]
+    balanced: bool = False
+
+    def stiffness(self, damage: float = 0.0) -> np.ndarray:
+        """``Qbar`` of the layer in the wall's axes [Pa], (3, 3), with ``damage``
+        (:func:`broken_in`)."""
+        q = broken_in(self.ply, damage).stiffness()
+        if self.balanced:
+            return 0.5 * (turned(q, self.angle) + turned(q, -self.angle))
+        return turned(q, self.angle)
+
+
+def broken_in(ply: OrthotropicPly, damage: float) -> OrthotropicPly:
+    """``ply`` after break-in ``damage`` (0 new, below 1): ``E2`` and ``G12`` times
+    ``1 - damage`` if the ply breaks in (module notes)."""
+    if not 0.0 <= damage < 1.0:
+        raise ValueError(f"break-in damage must lie in [0, 1), got {damage}")
+    if damage == 0.0 or not ply.breaks_in:
+        return ply
+    keep = 1.0 - damage
+    return replace(ply, e2=ply.e2 * keep, g12=ply.g12 * keep)
 
 
 def turned(q: np.ndarray, angle: float) -> np.ndarray:
@@ -92,8 +140,9 @@ class Laminate:
                                                           strict=True) for i in (0, 1))
 
 
-def laminate(layers: list[Layer] | tuple[Layer, ...]) -> Laminate:
-    """A, B and D of ``layers`` listed from the inner surface outward (module notes)."""
+def laminate(layers: list[Layer] | tuple[Layer, ...], damage: float = 0.0) -> Laminate:
+    """A, B and D of ``layers`` listed from the inner surface outward (module notes), after
+    break-in ``damage`` (:func:`broken_in`)."""
     if not layers:
         raise ValueError("a laminate needs at least one ply")
     t = np.array([layer.thickness for layer in layers], dtype=float)
@@ -102,9 +151,46 @@ def laminate(layers: list[Layer] | tuple[Layer, ...]) -> Laminate:
     z = np.concatenate([[0.0], np.cumsum(t)]) - 0.5 * t.sum()  # ply faces from the mid-surface
     a, b, d = np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3))
     for k, layer in enumerate(layers):
-        q = turned(layer.ply.stiffness(), layer.angle)
+        q = layer.stiffness(damage)
         a += q * (z[k + 1] - z[k])
         b += q * (z[k + 1] ** 2 - z[k] ** 2) / 2.0
         d += q * (z[k + 1] ** 3 - z[k] ** 3) / 3.0
     rho = float(sum(layer.ply.density * layer.thickness for layer in layers))
     return Laminate(a, b, d, float(t.sum()), rho)
+
+
+@dataclass(frozen=True)
+class WallStack:
+    """Concentric walls that slide on one another, the innermost first; each wall's layers
+    from its inner surface outward (module notes). One wall is an ordinary laminate."""
+
+    walls: tuple[tuple[Layer, ...], ...]
+
+    def __post_init__(self) -> None:
+        if not self.walls or not all(self.walls):
+            raise ValueError("a wall stack needs at least one wall, each of at least one ply")
+
+    @property
+    def thickness(self) -> float:
+        """All walls together [m]."""
+        return float(sum(layer.thickness for wall in self.walls for layer in wall))
+
+    def laminates(self, damage: float = 0.0) -> list[Laminate]:
+        """Each wall's laminate about its own mid-surface, innermost first."""
+        return [laminate(wall, damage) for wall in self.walls]
+
+    def law(self, damage: float = 0.0) -> np.ndarray:
+        """The stack's ``[[A, B], [B, D]]`` (6, 6) [N/m, N, N m]: the sum of its walls'
+        (module notes)."""
+        out = np.zeros((6, 6))
+        for lam in self.laminates(damage):
+            out[:3, :3] += lam.a
+            out[:3, 3:] += lam.b
+            out[3:, :3] += lam.b.T
+            out[3:, 3:] += lam.d
+        return out
+
+    @property
+    def breaks_in(self) -> bool:
+        """Whether any ply softens with use."""
+        return any(layer.ply.breaks_in for wall in self.walls for layer in wall)

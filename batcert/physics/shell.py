@@ -38,7 +38,7 @@ from batcert.physics.shell_element import (
 
 __all__ = ["Assembler", "HarmonicModes", "HarmonicSystem", "ShellOfRevolution", "assemble",
            "element_matrices", "harmonic_modes", "normal_reader", "normal_weights",
-           "ring_frequency", "static_solve"]
+           "ring_frequency", "ring_frequency_of", "static_solve"]
 
 
 @dataclass(frozen=True)
@@ -234,9 +234,9 @@ def normal_weights(shell: ShellOfRevolution, z: np.ndarray) -> tuple[np.ndarray,
 
 
 def ring_frequency(mean_radius, wall, youngs_modulus, density, poisson_ratio, n: int = 2):
-    """Inextensional thin-ring frequency of order ``n`` [Hz] (Love 1927; Soedel 2004):
-    ``omega = (t / R^2) sqrt(E' / (12 rho)) n (n^2 - 1) / sqrt(n^2 + 1)``, ``E' = E/(1-nu^2)``:
-    the infinitely long barrel's lower bound, for comparison only.
+    """Inextensional thin-ring frequency of order ``n`` [Hz] of an isotropic wall (Love 1927;
+    Soedel 2004): :func:`ring_frequency_of` with ``D = E t^3 / (12 (1 - nu^2))`` and
+    ``rho t``: the infinitely long barrel's lower bound, for comparison only.
 
     Examples
     --------
@@ -245,7 +245,16 @@ def ring_frequency(mean_radius, wall, youngs_modulus, density, poisson_ratio, n:
     >>> round(float(ring_frequency(0.0320875, 0.0025, 71.7e9, 2830.0, 0.33)))
     1596
     """
-    e_plane = youngs_modulus / (1.0 - poisson_ratio**2)
-    omega = (np.asarray(wall) / np.asarray(mean_radius) ** 2) * np.sqrt(
-        e_plane / (12.0 * density)) * n * (n * n - 1) / np.sqrt(n * n + 1.0)
+    wall = np.asarray(wall)
+    bending = youngs_modulus * wall**3 / (12.0 * (1.0 - poisson_ratio**2))
+    return ring_frequency_of(mean_radius, bending, density * wall, n)
+
+
+def ring_frequency_of(mean_radius, hoop_bending_stiffness, areal_density, n: int = 2):
+    """Inextensional thin-ring frequency of order ``n`` [Hz] of a wall whose bending stiffness
+    around the ring is ``hoop_bending_stiffness`` [N m] (``D22`` of a laminate) and whose mass
+    per unit area is ``areal_density`` [kg/m^2]:
+    ``omega = (n (n^2 - 1) / sqrt(n^2 + 1)) sqrt(D / (rho t)) / R^2``."""
+    omega = (np.sqrt(np.asarray(hoop_bending_stiffness) / np.asarray(areal_density))
+             / np.asarray(mean_radius) ** 2) * n * (n * n - 1) / np.sqrt(n * n + 1.0)
     return omega / (2 * np.pi)

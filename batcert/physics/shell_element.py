@@ -21,11 +21,19 @@ curvature ``s``, ``theta``; Lame parameters 1 and ``r``; meridian angle ``psi`` 
 
 (``tau`` is the engineering twist: Love's twist plus Sanders' term ``cos psi / r`` times the
 rotation about the normal, which makes every rigid-body motion strain-free: checked in the
-tests). With ``C = E t / (1 - nu^2)`` and ``D = E t^3 / (12 (1 - nu^2))`` the strain energy is
-``1/2 int [C (eps_s^2 + eps_th^2 + 2 nu eps_s eps_th + (1 - nu)/2 gamma^2) + D (kappa_s^2 +
-kappa_th^2 + 2 nu kappa_s kappa_th + (1 - nu)/2 tau^2)] r dtheta ds``; the kinetic energy is
-``1/2 int rho t (u_t^2 + v_t^2 + w_t^2) r dtheta ds`` (rotary inertia of the wall neglected). The
-``theta`` integrals give ``pi`` for ``n >= 1`` and ``2 pi`` (cosine terms only) for ``n = 0``.
+tests). The wall's law is the 6 x 6 matrix ``L = [[A, B], [B, D]]`` of classical lamination
+theory between the strains ``(eps_s, eps_th, gamma, kappa_s, kappa_th, tau)`` and the resultants
+``(N_s, N_th, N_s th, M_s, M_th, M_s th)`` (:func:`wall_law`): the strain energy is
+``1/2 int e^T L e r dtheta ds``. A uniform isotropic wall has ``B = 0``,
+``A = C [[1, nu, 0], [nu, 1, 0], [0, 0, (1 - nu)/2]]`` and ``D`` the same with ``D`` for ``C``
+(``C = E t / (1 - nu^2)``, ``D = E t^3 / (12 (1 - nu^2))``); a laminated one has the ``A``, ``B``,
+``D`` of its plies (:mod:`batcert.physics.laminate`) about the mid-surface. The shear-coupling
+terms (``A16``, ``A26``, ``B16`` ..) pair a ``cos(n theta)`` strain with a ``sin(n theta)`` one, so
+that the harmonics' symmetric and antimetric parts would no longer separate; a law with them is
+refused (:class:`ShellOfRevolution`). The kinetic energy is
+``1/2 int rho t (u_t^2 + v_t^2 + w_t^2) r dtheta ds`` (rotary inertia of the wall neglected;
+``rho t`` the wall's mass per unit area). The ``theta`` integrals give ``pi`` for ``n >= 1`` and
+``2 pi`` (cosine terms only) for ``n = 0``.
 
 Elements: ``U`` linear, ``V`` and ``W`` cubic Hermite (``V`` cubic too, so that the
 inextensional ring modes, ``n V + W = 0``, are represented without membrane locking). The node
@@ -54,7 +62,10 @@ class ShellOfRevolution:
     """The mid-surface meridian, wall and material of a shell of revolution.
 
     ``z`` and ``r`` are node positions (axial [m], mid-surface radius [m]), shape (N + 1,);
-    ``thickness``, ``density`` and ``youngs_modulus`` are per element, shape (N,).
+    ``thickness``, ``density`` and ``youngs_modulus`` are per element, shape (N,). A laminated
+    (or multi-wall) wall gives its law per element instead, ``law`` (N, 6, 6) (module notes;
+    :func:`wall_law`); ``youngs_modulus`` and ``poisson_ratio`` are then not read, and
+    ``density`` times ``thickness`` is the wall's mass per unit area.
     """
 
     z: np.ndarray  # [m]
@@ -64,6 +75,7 @@ class ShellOfRevolution:
     youngs_modulus: np.ndarray  # [Pa]
     poisson_ratio: float  # [-]
     ends: tuple[str, str] = ("closed", "closed")  # at z[0] and z[-1]
+    law: np.ndarray | None = None  # [[A, B], [B, D]] per element, (N, 6, 6) [N/m, N, N m]
 
     def __post_init__(self) -> None:
         if self.z.ndim != 1 or self.z.size < 2 or np.any(np.diff(self.z) <= 0):
@@ -72,6 +84,8 @@ class ShellOfRevolution:
             raise ValueError("shell radii and wall thickness must be positive")
         if any(e not in ENDS for e in self.ends):
             raise ValueError(f"shell ends must be one of {ENDS}, got {self.ends}")
+        if self.law is not None:
+            _check_law(np.asarray(self.law), self.z.size - 1)
 
     @property
     def n_elements(self) -> int:
@@ -84,6 +98,46 @@ class ShellOfRevolution:
 
     def node_dofs(self, n: int) -> int:
         return 3 if n == 0 else 5
+
+
+# the entries of the law that pair a strain of cos(n theta) with one of sin(n theta): A16, A26,
+# B16, B26, D16, D26 and their mirror images
+SHEAR_COUPLING = tuple((i, j) for i in (0, 1, 3, 4) for j in (2, 5))
+
+
+def _check_law(law: np.ndarray, elements: int) -> None:
+    if law.shape != (elements, 6, 6) or not np.all(np.isfinite(law)):
+        raise ValueError(f"a shell's law must be finite, shape ({elements}, 6, 6), got "
+                         f"{law.shape}")
+    if not np.allclose(law, law.transpose(0, 2, 1), rtol=1e-12, atol=0.0):
+        raise ValueError("a shell's law must be symmetric")
+    scale = np.sqrt(np.abs(np.einsum("eii->ei", law)))  # sqrt of the diagonal, (e, 6)
+    for i, j in SHEAR_COUPLING:
+        if np.any(np.abs(law[:, i, j]) > 1e-9 * scale[:, i] * scale[:, j]):
+            raise ValueError(
+                "the wall's law couples stretching or bending with shear or twist (A16, A26, "
+                "B16, B26, D16 or D26 not zero): the shell of revolution separates each "
+                "harmonic's cos and sin parts and cannot carry it")
+
+
+def isotropic_law(youngs_modulus, thickness, poisson_ratio: float) -> np.ndarray:
+    """``[[A, 0], [0, D]]`` of uniform isotropic walls (module notes), (N, 6, 6)."""
+    nu = poisson_ratio
+    base = np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0], [0.0, 0.0, 0.5 * (1 - nu)]])
+    t = np.asarray(thickness, dtype=float)
+    c = np.asarray(youngs_modulus, dtype=float) * t / (1 - nu**2)
+    law = np.zeros((t.size, 6, 6))
+    law[:, :3, :3] = c[:, None, None] * base
+    law[:, 3:, 3:] = (c * t**2 / 12.0)[:, None, None] * base
+    return law
+
+
+def wall_law(shell: ShellOfRevolution) -> np.ndarray:
+    """The law ``[[A, B], [B, D]]`` of every element (N, 6, 6): the shell's own ``law``, or
+    that of its isotropic wall (:func:`isotropic_law`)."""
+    if shell.law is not None:
+        return np.asarray(shell.law, dtype=float)
+    return isotropic_law(shell.youngs_modulus, shell.thickness, shell.poisson_ratio)
 
 
 def _hermite(xi: np.ndarray, length: np.ndarray):
@@ -169,12 +223,12 @@ def _to_global(sin_psi: np.ndarray, cos_psi: np.ndarray, n: int) -> np.ndarray:
 
 def _quadrature(weight: np.ndarray, a: np.ndarray, law: np.ndarray | None,
                 b: np.ndarray) -> np.ndarray:
-    """``sum_q weight[e, q] a[e, q]^T law b[e, q]`` for every element, (e, i, j): the
+    """``sum_q weight[e, q] a[e, q]^T law[e] b[e, q]`` for every element, (e, i, j): the
     quadrature of an element matrix from its strain (or displacement) matrices ``a``, ``b``
-    (e, q, 3, d) and the material law (3, 3; None for the identity), as one batched matrix
-    product per element (a four-operand einsum is several times slower)."""
+    (e, q, c, d) and each element's law (e, c, c; None for the identity), as one batched
+    matrix product per element (a four-operand einsum is several times slower)."""
     e, q, c, d = a.shape
-    right = b if law is None else np.matmul(law, b)
+    right = b if law is None else np.matmul(law[:, None], b)
     left = (a * weight[:, :, None, None]).reshape(e, q * c, d)
     return np.matmul(left.transpose(0, 2, 1), right.reshape(e, q * c, b.shape[-1]))
 
@@ -183,17 +237,14 @@ def element_matrices(shell: ShellOfRevolution, n: int):
     """Stiffness and mass matrices of every element for order ``n``, shape (e, d, d), the
     ``theta`` integral included (``pi``, or ``2 pi`` for ``n = 0``)."""
     b_m, b_b, disp, r = _strain_matrices(shell, n, GAUSS_POINTS)
-    nu = shell.poisson_ratio
-    law = np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0], [0.0, 0.0, 0.5 * (1 - nu)]])
+    law = wall_law(shell).copy()
     if n == 0:  # sin^2 terms (gamma, tau, v) integrate to zero
-        law[2, 2] = 0.0
-    e_plane = shell.youngs_modulus / (1 - nu**2)
-    c_m = e_plane * shell.thickness
-    c_b = e_plane * shell.thickness**3 / 12.0
+        law[:, [2, 5], :] = 0.0
+        law[:, :, [2, 5]] = 0.0
     factor = 2 * np.pi if n == 0 else np.pi
     wq = factor * GAUSS_WEIGHTS[None, :] * shell.lengths[:, None] * r  # (e, q)
-    k = (_quadrature(wq * c_m[:, None], b_m, law, b_m)
-         + _quadrature(wq * c_b[:, None], b_b, law, b_b))
+    strains = np.concatenate([b_m, b_b], axis=2)  # (e, q, 6, d)
+    k = _quadrature(wq, strains, law, strains)
     rho_t = (shell.density * shell.thickness)[:, None] * wq
     m = _quadrature(rho_t, disp, None, disp)
     return k, m
@@ -205,24 +256,18 @@ def element_power_matrices(shell: ShellOfRevolution) -> tuple[np.ndarray, np.nda
     stiffness is ``sum_p n^p K_p``, ``p = 0..4``, and its mass does not depend on ``n``. Returns
     the ``K_p`` (5, e, 10, 10) and the mass (e, 10, 10), on the layout of the orders ``>= 1``,
     the ``theta`` integral (``pi``) included."""
-    nu = shell.poisson_ratio
-    law = np.array([[1.0, nu, 0.0], [nu, 1.0, 0.0], [0.0, 0.0, 0.5 * (1 - nu)]])
-    e_plane = shell.youngs_modulus / (1 - nu**2)
     wq = np.pi * GAUSS_WEIGHTS[None, :] * shell.lengths[:, None]
     bm = [_strain_matrices(shell, v, GAUSS_POINTS, layout=1)[0] for v in (0.0, 1.0)]
     bb = [_strain_matrices(shell, v, GAUSS_POINTS, layout=1)[1] for v in (0.0, 1.0, 2.0)]
     disp, r = _strain_matrices(shell, 1.0, GAUSS_POINTS, layout=1)[2:]
-    mem = [bm[0], bm[1] - bm[0]]  # B_m = mem[0] + n mem[1]
     c2 = 0.5 * (bb[2] - 2 * bb[1] + bb[0])
-    ben = [bb[0], bb[1] - bb[0] - c2, c2]  # B_b = ben[0] + n ben[1] + n^2 ben[2]
-    cm = (wq * r) * (e_plane * shell.thickness)[:, None]
-    cb = (wq * r) * (e_plane * shell.thickness**3 / 12.0)[:, None]
+    # the strains (membrane over bending) as S_0 + n S_1 + n^2 S_2; the membrane's are linear
+    terms = [np.concatenate(pair, axis=2) for pair in
+             ((bm[0], bb[0]), (bm[1] - bm[0], bb[1] - bb[0] - c2), (np.zeros_like(c2), c2))]
+    law = wall_law(shell)
     powers = np.zeros((5, shell.n_elements, 10, 10))
-    for i, a in enumerate(mem):
-        for j, b in enumerate(mem):
-            powers[i + j] += _quadrature(cm, a, law, b)
-    for i, a in enumerate(ben):
-        for j, b in enumerate(ben):
-            powers[i + j] += _quadrature(cb, a, law, b)
+    for i, a in enumerate(terms):
+        for j, b in enumerate(terms):
+            powers[i + j] += _quadrature(wq * r, a, law, b)
     rho_t = (shell.density * shell.thickness)[:, None] * wq * r
     return powers, _quadrature(rho_t, disp, None, disp)

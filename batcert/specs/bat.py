@@ -13,6 +13,7 @@ from batcert.conventions import DEFAULT_PIVOT
 from batcert.errors import Collector
 from batcert.physics.batmodel import Material
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked, pairs, spec_from
+from batcert.specs.layup import LAYUP_KIND, check_layup, spans_of
 from batcert.specs.materials import LIBRARY
 from batcert.specs.schema import (
     Field,
@@ -120,7 +121,10 @@ MEASURED_SCHEMA = Schema("measured properties", (
 
 
 def _check_bat(v: dict, data: Located, errors: Collector, path: str) -> None:
-    if v["construction"] == "hollow" and v["wall"] is None:
+    check_layup(v, data, errors)
+    if v["layup"] is None and v["material"] is None:
+        errors.add(data.line, "material", "required field is missing")
+    if v["construction"] == "hollow" and v["wall"] is None and v["layup"] is None:
         errors.add(lookup(data, "construction")[0], "wall", "hollow bats need a wall thickness "
                    "(`wall: 2.5 mm` or a list of [position, thickness] pairs)")
     if v["construction"] == "solid" and v["wall"] is not None:
@@ -166,8 +170,11 @@ BAT_SCHEMA = Schema("bat", (
                          describe="a thickness or a list of [position, thickness] pairs"),
           "Wall thickness of a hollow bat: constant, or per station (interpolated; "
           "0.1-20 mm)."),
-    Field("material", _material_kind(), "Material: library name or inline properties.",
-          required=True),
+    Field("material", _material_kind(), "Material: library name or inline properties. With "
+          "a `layup` that covers the whole bat it may be left out (the layup's own then)."),
+    Field("layup", LAYUP_KIND, "Hollow bats: laminated (composite) or multi-wall walls, as "
+          "spans along the bat, each a stack of walls of plies [material, angle, thickness] "
+          "(docs/inputs.md, 'Layups'); where given, it replaces `wall` and `material`."),
     Field("knob_mass", quantity("mass", minimum=0.0, maximum=1.0), "Extra mass at the knob end "
           "(at most 1 kg).", default=0.0),
     Field("end_cap_mass", quantity("mass", minimum=0.0, maximum=1.0), "Extra mass at the tip "
@@ -220,7 +227,7 @@ class BatSpec:
     length: float  # [m]
     profile: tuple[tuple[float, ...], tuple[float, ...]]  # stations [m from knob], diameters [m]
     wall: float | tuple[tuple[float, ...], tuple[float, ...]] | None  # [m] or stations, walls
-    material: Material
+    material: Material | None  # None: a layup covers the whole bat
     knob_mass: float  # [kg]
     end_cap_mass: float  # [kg]
     shear_correction: float | None  # [-]
@@ -229,6 +236,7 @@ class BatSpec:
     measured: MeasuredSpec | None
     reconcile: str  # density-profile | point-masses | none
     identification: dict | None = None  # maker, model, serial, lot (text; those given)
+    layup: tuple = ()  # (start [m from knob], end [m], WallStack) spans; () for none
 
     @property
     def path(self) -> str:
@@ -246,4 +254,6 @@ def load_bat(path: str | Path) -> BatSpec:
     measured: Any = values["measured"]
     if measured is not None:
         values["measured"] = spec_from(MeasuredSpec, measured)
+    values["layup"] = () if values["layup"] is None else spans_of(values["layup"],
+                                                                    values["length"])
     return spec_from(BatSpec, values, source=Source.of(path, data))

@@ -71,7 +71,9 @@ def _hollow(case: Case, what: str) -> None:
 def _walls(spec: BatSpec) -> tuple[tuple[float, ...], tuple[float, ...]]:
     if isinstance(spec.wall, tuple):
         return spec.wall
-    assert spec.wall is not None
+    if spec.wall is None:
+        raise ParameterError(f"{spec.name!r} gives its walls as a layup, not a wall thickness "
+                             "(vary its plies instead: ply_angle, ply_count, wall_split)")
     return (0.0,), (float(spec.wall),)
 
 
@@ -89,9 +91,17 @@ def _wall_apply(case: Case, built: BuiltBat, value: float) -> Case:
     return replace(case, bat=geometry_only(replace(case.bat, wall=wall)))
 
 
+def _material(case: Case):
+    m = case.bat.material
+    if m is None:
+        raise ParameterError(f"{case.bat.name!r} has no material of its own: its walls are a "
+                             "layup (vary its plies instead: ply_angle, ply_count, wall_split)")
+    return m
+
+
 def _material_apply(**scale_of: str):
     def apply(case: Case, built: BuiltBat, value: float) -> Case:
-        m = case.bat.material
+        m = _material(case)
         field = next(iter(scale_of))
         s = value / getattr(m, field)
         changes = {f: getattr(m, f) * s for f in scale_of.values()}
@@ -244,11 +254,11 @@ PARAMETERS: dict[str, Parameter] = {p.name: p for p in (
            "the thickest station (the barrel) takes the value and every station scales in proportion.",
            _wall_nominal, _wall_apply, (1e-4, 0.02), 1e-6),
     _param("youngs_modulus", "Young's modulus", "modulus", "geometry", "The material's "
-           "stiffness: Young's modulus (the shear modulus scales with it).", lambda c, b: c.bat.material.youngs_modulus,
+           "stiffness: Young's modulus (the shear modulus scales with it).", lambda c, b: _material(c).youngs_modulus,
            _material_apply(youngs_modulus="youngs_modulus", shear_modulus="shear_modulus"),
            (1e8, 1e12), 1e6),
     _param("density", "density", "density", "geometry", "The material's density.",
-           lambda c, b: c.bat.material.density, _material_apply(density="density"),
+           lambda c, b: _material(c).density, _material_apply(density="density"),
            (100.0, 20000.0), 0.1),
     _param("barrel_diameter", "barrel diameter", "length", "geometry", "Barrel diameter: the handle and knob keep "
            "theirs and the taper stretches to the new barrel.", _barrel_nominal, _barrel_apply,

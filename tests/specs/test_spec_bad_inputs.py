@@ -47,6 +47,17 @@ CASES: dict[str, list[Expect]] = {
                                "mass (-12 g) and a negative end-cap mass (-28 g); try `reconcile: "
                                "density-profile`"),
     ],
+    "bat-layup-coupled.yaml": [
+        Expect(7, "layup[0].walls[0].plies", "this wall couples stretching or bending with shear "
+                                             "or twist"),
+    ],
+    "bat-layup-problems.yaml": [
+        Expect(11, "layup[0].walls[0].plies[0]", "unknown ply material 't700-epoxi'"),
+        Expect(12, "layup[0].walls[0].plies[1]", "a ply angle is written like '0 deg'"),
+        Expect(13, "layup[0].walls[0].plies[2]", "a ply's thickness must be 0.01-20 mm"),
+    ],
+    "bat-layup-on-solid.yaml": [Expect(6, "layup", "only a hollow bat has a wall to lay up")],
+    "bat-layup-overlap.yaml": [Expect(10, "layup[1].span", "overlaps span 0")],
     "bat-bare-number.yaml": [
         Expect(4, "length", "a unit is required (e.g. '34 in'), got the bare number 34"),
     ],

@@ -19,6 +19,7 @@ from batcert.physics.shell import (
     ShellOfRevolution,
     harmonic_modes,
 )
+from batcert.physics.shell_element import isotropic_law
 
 DYNAMIC_ORDERS = 6  # highest order whose modes join the engine (0, 2..6)
 # highest order summed into the quasi-static residual: the orders above it hold under 3e-6 of
@@ -60,8 +61,25 @@ def barrel_shell(bat: BatModel) -> ShellOfRevolution | None:
     area = 0.25 * np.pi * (outer[sl] ** 2 - inner[sl] ** 2)
     density = bat.linear_density[sl] / area * bat.barrel_mass_scale
     young = np.full(z_mid.size, bat.material.youngs_modulus * bat.barrel_stiffness_scale)
-    return ShellOfRevolution(z, r, 0.5 * (outer[sl] - inner[sl]), density, young,
-                             bat.material.poisson_ratio, ("closed", bat.barrel_end))
+    wall = 0.5 * (outer[sl] - inner[sl])
+    return ShellOfRevolution(z, r, wall, density, young, bat.material.poisson_ratio,
+                             ("closed", bat.barrel_end), _layup_law(bat, sl, wall))
+
+
+def _layup_law(bat: BatModel, sl: slice, wall: np.ndarray) -> np.ndarray | None:
+    """The shell's law per element where some of its slices are laminated or multi-wall
+    (``bat.layup``, after ``bat.wall_damage``), else None (the material's isotropic wall);
+    times ``barrel_stiffness_scale``."""
+    if bat.layup is None:
+        return None
+    index = np.asarray(bat.layup.index)[sl]
+    if not np.any(index >= 0):
+        return None
+    law = isotropic_law(np.full(wall.size, bat.material.youngs_modulus), wall,
+                        bat.material.poisson_ratio)
+    for k in np.unique(index[index >= 0]):
+        law[index == k] = bat.layup.stacks[int(k)].law(bat.wall_damage)
+    return law * bat.barrel_stiffness_scale
 
 
 @dataclass(frozen=True)
@@ -299,7 +317,8 @@ def _to_arrays(modes: BarrelModes) -> dict[str, np.ndarray]:
     s = modes.shell
     return {"z": s.z, "r": s.r, "thickness": s.thickness, "density": s.density,
             "youngs_modulus": s.youngs_modulus, "poisson_ratio": np.array(s.poisson_ratio),
-            "ends": np.array(s.ends), "orders": np.array(modes.orders), "green": modes.green,
+            "ends": np.array(s.ends), "law": np.zeros(0) if s.law is None else s.law,
+            "orders": np.array(modes.orders), "green": modes.green,
             "omega": modes.omega, "mode_orders": modes.mode_orders, "shapes": modes.shapes,
             "max_frequency": np.array(modes.max_frequency),
             "green_scale": np.array(modes.green_scale)}
@@ -313,9 +332,10 @@ def _from_arrays(a: dict | None, cut: float) -> BarrelModes | None:
         ends = tuple(str(e) for e in a["ends"])
         if len(ends) != 2:
             return None
+        law = a["law"]
         shell = ShellOfRevolution(a["z"], a["r"], a["thickness"], a["density"],
                                   a["youngs_modulus"], float(a["poisson_ratio"]),
-                                  (ends[0], ends[1]))
+                                  (ends[0], ends[1]), None if law.size == 0 else law)
         modes = BarrelModes(shell, tuple(int(n) for n in a["orders"]), a["green"], a["omega"],
                             a["mode_orders"], a["shapes"], float(a["max_frequency"]),
                             float(a["green_scale"]))

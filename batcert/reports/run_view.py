@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from batcert.reports import format as fmt
+from batcert.reports.barrel_view import break_in_view, compression_table
 from batcert.reports.table import Table
 from batcert.reports.uncertainty_view import uncertainty_view
 from batcert.results.run import RunResult
@@ -269,4 +270,6 @@ def run_view(result: RunResult) -> dict[str, Any]:
         "print_header": f"{result.bat} \u2014 {result.protocol} \u2014 {shown['label']}",
         "show_metric_plot": shows_metric_plot(result),
         "uncertainty": uncertainty_view(result),
+        "compression": compression_table(result),
+        "break_in": break_in_view(result),
     }

@@ -88,6 +88,52 @@ class BarrelRange:
 
 
 @dataclass
+class CompressionResult:
+    """A barrel compression test (batcert.methods.abi): the force on one platen at the stated
+    approach of two flat platens."""
+
+    position: float  # centre of the platens from the tip [m]
+    platen_width: float  # [m]
+    deflection: float  # approach of the platens [m]
+    force: float  # on one platen at that approach [N]
+    stiffness: float  # force per approach [N/m]
+    min: float | None  # smallest passing force [N], None without a limit
+    margin: float | None  # force - min [N]
+    verdict: str | None  # pass | fail | None
+    source: str = ""  # the test's conventions, as the protocol states them
+
+
+@dataclass
+class BreakInStep:
+    """One reading of an accelerated break-in: after ``passes`` rolling passes."""
+
+    passes: int
+    damage: float | None  # the model's ply damage [-]; None for a measured reading
+    force: float  # barrel compression [N]
+    drop: float  # 1 - force / initial force [-]
+
+
+@dataclass
+class BreakInResult:
+    """The accelerated break-in before the test (batcert.methods.abi): its compression history
+    and the test's result before it (the run's own result is after it)."""
+
+    applies: bool  # whether the barrel breaks in (composite plies)
+    skipped: bool  # not rolled: compression already fell beyond skip_drop
+    outcome: str  # in words
+    steps: list[BreakInStep]
+    target_drop: float  # [-]
+    skip_drop: float  # [-]
+    damage_per_pass: float  # [-] (emulation; assumed)
+    source: str
+    measured: bool  # a lab's readings (True) or the model's emulation
+    value_before: float | None = None  # the protocol's aggregated metric on the new bat
+    margin_before: float | None = None
+    verdict_before: str | None = None
+    compression_before: float | None = None  # [N]
+
+
+@dataclass
 class InputUncertainty:
     """One input whose stated uncertainty went into the Monte Carlo, and what it did."""
 
@@ -180,6 +226,8 @@ class RunResult(Serialisable):
     statement: str = "predicted"
     model_offset: str = ""
     bat_identification: dict[str, str] = field(default_factory=dict)  # maker, model, serial, lot
+    compression: CompressionResult | None = None  # the protocol's barrel compression test
+    break_in: BreakInResult | None = None  # the protocol's accelerated break-in
 
     def return_code(self) -> int:
         """The command line's exit code for this result: 1 when the predicted verdict fails,

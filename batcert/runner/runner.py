@@ -9,12 +9,14 @@ and locate the peaks (:mod:`batcert.runner.locate`), let the impact rule choose 
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from dataclasses import replace
+from typing import Any, TypeVar
 
 import numpy as np
 
 from batcert.engines.base import Engine
 from batcert.errors import Collector, InputError, Problem
+from batcert.methods import abi
 from batcert.methods.metrics import AGGREGATES, METRICS, ImpactMetrics
 from batcert.methods.rules import IMPACT_RULES, Choice
 from batcert.model.build import BuiltBat
@@ -32,6 +34,8 @@ from batcert.specs.common import split_field
 from batcert.specs.protocol import LimitSpec, ProtocolSpec
 from batcert.specs.resolve import display_path
 from batcert.version import __version__
+
+T = TypeVar("T")
 
 
 def check_applicable(protocol: ProtocolSpec, built: BuiltBat) -> None:
@@ -175,9 +179,46 @@ def run_protocols(jobs: list[tuple[BuiltBat, ProtocolSpec, BallSpec]], engine: E
 
 def protocol_steps(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine: Engine,
                    created: str) -> Steps:
-    """The steps of :func:`run_protocol` (a generator for :func:`drive`)."""
-    p, bat = protocol, built.model
+    """The steps of :func:`run_protocol` (a generator for :func:`drive`): the protocol's
+    barrel tests (:mod:`batcert.methods.abi`) and the impacts; with a break-in that applies,
+    the impacts before it too (the result is after it, with the before in ``break_in``)."""
+    p = protocol
     check_applicable(p, built)
+    test = p.barrel_compression if built.model.construction == "hollow" else None
+    emulated = None
+    if test is not None and p.break_in is not None:
+        emulated = _checked(p, abi.emulate, built.model, test, p.break_in)
+    compression = None if test is None else _checked(p, abi.compression, built.model, test)
+    if emulated is not None and emulated.model is not built.model:
+        before = yield from _impact_steps(built, p, ball, engine, created)
+        built = replace(built, model=emulated.model)
+        compression = abi.compression(built.model, emulated.test)
+    result = yield from _impact_steps(built, p, ball, engine, created)
+    result.compression = compression
+    if emulated is not None:
+        record = emulated.record
+        if record.applies and not record.skipped:
+            record.value_before, record.margin_before = before.value, before.margin
+            record.verdict_before = before.verdict
+        record.compression_before = record.steps[0].force
+        result.break_in = record
+    return result
+
+
+def _checked(p: ProtocolSpec, fn: Callable[..., T], *args: Any) -> T:
+    """``fn(*args)`` of the barrel tests, or an :class:`InputError` at the protocol's field the
+    bat cannot meet (platens off the barrel, a break-in target the plies cannot reach)."""
+    try:
+        return fn(*args)
+    except ValueError as exc:
+        field_ = "barrel_compression" if "compression test" in str(exc) else "break_in"
+        raise InputError([Problem(p.path, p.line(field_), field_, str(exc))]) from None
+
+
+def _impact_steps(built: BuiltBat, p: ProtocolSpec, ball: BallSpec, engine: Engine,
+                  created: str) -> Steps:
+    """The impacts of :func:`protocol_steps` on ``built`` as it is."""
+    bat = built.model
     conds = conditions_from_spec(p.conditions, bat.length, p.pivot)
     bench = Bench(built, ball, engine, p.pivot, p.support)
     mp = mass_properties(built, p.pivot)

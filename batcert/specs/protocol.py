@@ -15,6 +15,12 @@ from batcert.conventions import DEFAULT_PIVOT
 from batcert.errors import Collector, InputError, Problem
 from batcert.methods.metrics import AGGREGATES, METRIC_BOUND, METRICS
 from batcert.methods.rules import IMPACT_RULES
+from batcert.specs.barrel_tests import (
+    BREAK_IN_SCHEMA,
+    COMPRESSION_TEST_SCHEMA,
+    BreakInSpec,
+    CompressionTestSpec,
+)
 from batcert.specs.common import Source, spec_from, split_field
 from batcert.specs.schema import (
     Field,
@@ -136,6 +142,12 @@ LIMIT_SCHEMA = Schema("limit", (
 ))
 
 
+def _check_break_in(v: dict, data: Located, errors: Collector, path: str) -> None:
+    if v["break_in"] is not None and v["barrel_compression"] is None:
+        errors.add(lookup(data, "break_in")[0], "break_in", "the break-in reads the barrel's "
+                   "compression: add `barrel_compression`")
+
+
 def _is_plain_number(value: object) -> bool:
     if isinstance(value, bool):
         return False
@@ -189,7 +201,13 @@ PROTOCOL_SCHEMA = Schema("protocol", (
     Field("aggregate", choice(*AGGREGATES), "How conditions combine: " + "; ".join(
         f"{a.name}: {a.doc}" for a in AGGREGATES.values()), default="mean"),
     Field("limit", section(LIMIT_SCHEMA), "Pass/fail limit (omit for no verdict)."),
-), checks=(_check_limit,))
+    Field("barrel_compression", section(COMPRESSION_TEST_SCHEMA), "Hollow bats: a static "
+          "barrel compression test (ASTM F2844-style; docs/physics.md), reported with the run."),
+    Field("break_in", section(BREAK_IN_SCHEMA), "Barrels whose plies break in (composite): "
+          "the accelerated break-in emulated before the test, which is run before and after "
+          "it; needs `barrel_compression`."),
+), checks=(_check_limit, _check_break_in))
+
 
 
 @dataclass(frozen=True)
@@ -245,7 +263,9 @@ class ProtocolSpec:
     metric: str  # a name of batcert.methods.metrics.METRICS
     aggregate: str  # a name of batcert.methods.metrics.AGGREGATES
     limit: LimitSpec | None
-    origin: tuple[str | int, ...] = ()  # keys of an inline protocol inside its study file
+    origin: tuple[str | int, ...] = ()
+    barrel_compression: CompressionTestSpec | None = None
+    break_in: BreakInSpec | None = None  # keys of an inline protocol inside its study file
 
     @property
     def path(self) -> str:
@@ -281,6 +301,9 @@ def protocol_from_values(values: dict[str, Any], source: Source,
     loc["window"] = tuple(loc["window"])
     v["impact_location"] = spec_from(LocationSpec, loc)
     v["limit"] = spec_from(LimitSpec, v["limit"]) if v["limit"] else None
+    v["barrel_compression"] = (spec_from(CompressionTestSpec, v["barrel_compression"])
+                               if v.get("barrel_compression") else None)
+    v["break_in"] = spec_from(BreakInSpec, v["break_in"]) if v.get("break_in") else None
     return spec_from(ProtocolSpec, v, source=source, origin=origin)
 
 

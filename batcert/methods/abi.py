@@ -1,0 +1,116 @@
+"""The barrel compression test and the accelerated break-in (ABI) of a composite barrel, as a
+protocol runs them (:mod:`batcert.runner.runner`) and as a lab reduces a measured one.
+
+Compression: the force on one flat platen when two opposite platens, ``platen_width`` long,
+centred ``position`` from the tip, have approached by ``deflection``; the barrel is linear
+(:func:`batcert.physics.barrel.compression_stiffness`), so the force is the stiffness times the
+deflection.
+
+ABI (NCAA; the steps as issue 26 states them, the NCAA document itself not read, see
+docs/physics.md): the initial compression is measured; if it has already fallen by more than
+``skip_drop`` of the new bat's, the bat is not rolled (a model is of a new bat, so only a
+measured history, :func:`measured_history`, can be skipped); else it is rolled pass by pass, the
+compression read after each, until it has fallen by at least ``target_drop`` of the initial;
+then the performance test. A pass is emulated as ``damage_per_pass`` more damage of the plies'
+matrix-dominated moduli (:func:`batcert.model.break_in.broken_in_model`): an assumption, as no
+measured relation between rolling and damage was found.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from batcert.model.break_in import breaks_in, broken_in_model
+from batcert.physics.barrel import compression_stiffness
+from batcert.physics.batmodel import BatModel
+from batcert.results.run import BreakInResult, BreakInStep, CompressionResult
+from batcert.specs.barrel_tests import BreakInSpec, CompressionTestSpec
+
+
+def compression(model: BatModel, test: CompressionTestSpec) -> CompressionResult:
+    """The barrel compression test on ``model`` (module notes), with its verdict against the
+    test's ``min`` where one is given."""
+    try:
+        k = compression_stiffness(model, model.length - test.position, test.platen_width)
+    except ValueError as exc:
+        raise ValueError(f"barrel compression test: {exc}") from None
+    force = k * test.deflection
+    margin = None if test.min is None else force - test.min
+    verdict = None if margin is None else ("pass" if margin >= 0 else "fail")
+    return CompressionResult(test.position, test.platen_width, test.deflection, force, k,
+                             test.min, margin, verdict, test.source or "")
+
+
+@dataclass(frozen=True)
+class Emulated:
+    """An emulated ABI: its record, and the bat after it (the bat before, if not rolled)."""
+
+    record: BreakInResult
+    model: BatModel
+    test: CompressionTestSpec  # the compression test the break-in read
+
+
+def emulate(model: BatModel, test: CompressionTestSpec, rule: BreakInSpec) -> Emulated:
+    """The ABI on ``model`` (module notes). A bat whose plies do not break in (a metal wall)
+    is not rolled, and its record says so."""
+    if model.wall_damage != 0.0:
+        raise ValueError("the break-in is emulated on a new bat")
+    initial = compression(model, test).force
+    steps = [BreakInStep(0, 0.0, initial, 0.0)]
+    if not breaks_in(model):
+        return Emulated(_record(rule, False, "no ply of the barrel breaks in (not a composite "
+                                "barrel): the ABI does not apply", steps, False), model, test)
+    # a model is of a new bat, whose compression has not fallen: the skip rule acts on measured
+    # histories (measured_history)
+    for n in range(1, rule.max_passes + 1):
+        damage = n * rule.damage_per_pass
+        if damage >= 1.0:
+            break
+        rolled = broken_in_model(model, damage)
+        force = compression(rolled, test).force
+        steps.append(BreakInStep(n, damage, force, 1.0 - force / initial))
+        if force <= (1.0 - rule.target_drop) * initial:
+            return Emulated(_record(rule, True, f"rolled {n} passes until the compression "
+                                    f"fell {100 * steps[-1].drop:.2f} % (target "
+                                    f"{100 * rule.target_drop:g} %)", steps, False), rolled, test)
+    raise ValueError(f"the emulated break-in did not lower the barrel's compression by "
+                     f"{100 * rule.target_drop:g} % within {len(steps) - 1} passes (last "
+                     f"{100 * steps[-1].drop:.2f} %): its plies' matrix moduli carry too little "
+                     "of the barrel's compression stiffness")
+
+
+def _record(rule: BreakInSpec, applies: bool, outcome: str, steps: list[BreakInStep],
+            skipped: bool) -> BreakInResult:
+    return BreakInResult(applies=applies, skipped=skipped, outcome=outcome,
+                         steps=steps, target_drop=rule.target_drop, skip_drop=rule.skip_drop,
+                         damage_per_pass=rule.damage_per_pass, source=rule.source or "",
+                         measured=False)
+
+
+def measured_history(forces: list[float], new_force: float | None,
+                     rule: BreakInSpec) -> BreakInResult:
+    """A lab's measured ABI: the compression before rolling and after each pass [N], and the
+    new bat's where known; checked against the rule (skip, or a final drop of at least
+    ``target_drop``)."""
+    if not forces:
+        raise ValueError("a measured break-in needs at least the initial compression")
+    initial = forces[0]
+    steps = [BreakInStep(i, None, f, 1.0 - f / initial) for i, f in enumerate(forces)]
+    if new_force is not None and 1.0 - initial / new_force > rule.skip_drop:
+        outcome = (f"compression already {100 * (1 - initial / new_force):.1f} % below the new "
+                   "bat's: rolling skipped (skip rule)")
+        return _measured(rule, outcome, steps, True)
+    drop = steps[-1].drop
+    if drop < rule.target_drop:
+        outcome = (f"the last reading is {100 * drop:.2f} % below the initial: the procedure "
+                   f"needs at least {100 * rule.target_drop:g} %, so the break-in is incomplete")
+    else:
+        outcome = f"rolled {len(forces) - 1} passes; compression fell {100 * drop:.2f} %"
+    return _measured(rule, outcome, steps, False)
+
+
+def _measured(rule: BreakInSpec, outcome: str, steps: list[BreakInStep],
+              skipped: bool) -> BreakInResult:
+    out = _record(rule, True, outcome, steps, skipped)
+    out.measured = True
+    return out

@@ -57,9 +57,10 @@ def emulate(model: BatModel, test: CompressionTestSpec, rule: BreakInSpec) -> Em
         raise ValueError("the break-in is emulated on a new bat")
     initial = compression(model, test).force
     steps = [BreakInStep(0, 0.0, initial, 0.0)]
-    if not breaks_in(model):
-        return Emulated(_record(rule, False, "no ply of the barrel breaks in (not a composite "
-                                "barrel): the ABI does not apply", steps, False), model, test)
+    if not breaks_in(model, model.length - test.position):
+        return Emulated(_record(rule, False, "the barrel's wall under the platens has no ply "
+                                "that breaks in (not a composite barrel): the ABI does not "
+                                "apply", steps, False), model, test)
     # a model is of a new bat, whose compression has not fallen: the skip rule acts on measured
     # histories (measured_history)
     for n in range(1, rule.max_passes + 1):

@@ -17,11 +17,13 @@ from batcert.model.geometry import stack_section
 from batcert.physics.batmodel import BatModel
 
 
-def breaks_in(model: BatModel) -> bool:
-    """Whether any ply of the bat's layup softens with use (a composite wall)."""
-    return model.layup is not None and any(
-        stack.breaks_in for k, stack in enumerate(model.layup.stacks)
-        if np.any(np.asarray(model.layup.index) == k))
+def breaks_in(model: BatModel, z: float) -> bool:
+    """Whether the wall at ``z`` [m from knob] has plies that soften with use (a composite
+    barrel there; a hybrid's composite handle does not make its alloy barrel break in)."""
+    if model.layup is None:
+        return False
+    stack = model.layup.stack_of(int(model.slice_at(z)))
+    return stack is not None and stack.breaks_in
 
 
 def broken_in_model(model: BatModel, damage: float) -> BatModel:

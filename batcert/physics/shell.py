@@ -161,16 +161,22 @@ def _with_ends(shell: ShellOfRevolution, n: int, k: np.ndarray, m: np.ndarray,
 
 def static_solve(system: HarmonicSystem, factor, load: np.ndarray) -> np.ndarray:
     """Static displacements of the free dofs under ``load`` (free dofs, one column per case),
-    with ``factor`` the Cholesky factor of the system's stiffness; for a supported order 0 the
-    load is first equilibrated against the axial translation and the translation removed from
-    the answer (inertia relief; Craig & Kurdila 2006, Sec. 11.3)."""
+    with ``factor`` the Cholesky factor of the system's stiffness (``scipy.linalg.cho_factor``'s)
+    or a function that solves with it; for a supported order 0 the load is first equilibrated
+    against the axial translation and the translation removed from the answer (inertia relief;
+    Craig & Kurdila 2006, Sec. 11.3)."""
     import scipy.linalg  # hollow bats only: ~0.15 s to import
 
+    def solve(b: np.ndarray) -> np.ndarray:
+        if callable(factor):
+            return factor(b)
+        return scipy.linalg.cho_solve(factor, b, check_finite=False)
+
     if system.rigid is None:
-        return scipy.linalg.cho_solve(factor, load, check_finite=False)
+        return solve(load)
     mr = system.mass @ system.rigid
     balanced = load - np.outer(mr, system.rigid @ load)
-    x = scipy.linalg.cho_solve(factor, balanced, check_finite=False)
+    x = solve(balanced)
     return x - np.outer(system.rigid, mr @ x)
 
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from batcert.physics.banded import lower_band
 from batcert.physics.barrel.wall import (
     STATIC_ORDERS,
     barrel_shell,
@@ -14,6 +15,7 @@ from batcert.physics.barrel.wall import (
 )
 from batcert.physics.batmodel import BatModel
 from batcert.physics.shell import (
+    Assembler,
     assemble,
     normal_reader,
     static_solve,
@@ -82,14 +84,29 @@ def compression_stiffness(bat: BatModel, position: float, platen_width: float) -
     k_pts = 16
     zs = position + half * (np.arange(k_pts) + 0.5) / k_pts * 2 - half
     w = np.full(k_pts, 1.0 / k_pts)
-    approach = 0.0
-    for n in range(0, STATIC_ORDERS + 1, 2):
-        system = assemble(shell, n, support=True)
+    assembler = Assembler(shell)
+
+    def load(n: int, system) -> np.ndarray:  # the platen's unit load, on the free dofs
         cols, h = normal_reader(shell, n, zs)
         f = np.zeros(system.node_dofs * shell.z.size)
         np.add.at(f, cols.ravel(), (h * w[:, None]).ravel())
-        f_free = f[system.free][:, None]
-        factor = scipy.linalg.cho_factor(system.stiffness, check_finite=False)
-        x = static_solve(system, factor, f_free)
-        approach += 2.0 * 2.0 * float(f_free[:, 0] @ x[:, 0])  # both loads; both platens
+        return f[system.free]
+
+    # the even orders n >= 2 (banded: each node couples only to its neighbours)
+    orders = list(range(2, STATIC_ORDERS + 1, 2))
+    bands, _ = assembler.stiffness_bands(orders)
+    approach = 0.0
+    for n, ab in zip(orders, bands, strict=True):
+        f = load(n, assembler.system(n))
+        factor = scipy.linalg.cholesky_banded(ab, lower=True, check_finite=False)
+        x = scipy.linalg.cho_solve_banded((factor, True), f, check_finite=False)
+        approach += 4.0 * float(f @ x)  # both loads; both platens
+    system = assembler.system(0, support=True)  # order 0, with inertia relief
+    f0 = load(0, system)
+    factor = scipy.linalg.cholesky_banded(lower_band(system.stiffness, 2 * system.node_dofs - 1),
+                                          lower=True, check_finite=False)
+    x0 = static_solve(system, lambda b: scipy.linalg.cho_solve_banded(
+        (factor, True), b, check_finite=False), f0[:, None])
+    approach += 4.0 * float(f0 @ x0[:, 0])
     return 1.0 / approach
+

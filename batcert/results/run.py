@@ -89,7 +89,7 @@ class BarrelRange:
 
 @dataclass
 class CompressionResult:
-    """A barrel compression test (batcert.methods.abi): the force on one platen at the stated
+    """A barrel compression test (batcert.runner.barrel_tests): the force on one platen at the stated
     approach of two flat platens."""
 
     position: float  # centre of the platens from the tip [m]
@@ -115,7 +115,7 @@ class BreakInStep:
 
 @dataclass
 class BreakInResult:
-    """The accelerated break-in before the test (batcert.methods.abi): its compression history
+    """The accelerated break-in before the test (batcert.runner.barrel_tests): its compression history
     and the test's result before it (the run's own result is after it)."""
 
     applies: bool  # whether the barrel breaks in (composite plies)

@@ -16,7 +16,6 @@ import numpy as np
 
 from batcert.engines.base import Engine
 from batcert.errors import Collector, InputError, Problem
-from batcert.methods import abi
 from batcert.methods.metrics import AGGREGATES, METRICS, ImpactMetrics
 from batcert.methods.rules import IMPACT_RULES, Choice
 from batcert.model.build import BuiltBat
@@ -25,6 +24,7 @@ from batcert.model.mass import CLEARANCE, mass_properties, pivot_problem
 from batcert.physics import rigid
 from batcert.results.run import BarrelRange, ConditionResult, InputFile, MassProperties, RunResult, Sweep
 from batcert.results.serialise import utc_now
+from batcert.runner import barrel_tests as abi
 from batcert.runner.barrel_range import barrel_range_steps
 from batcert.runner.bench import Bench, Steps, drive
 from batcert.runner.conditions import Condition, conditions_from_spec
@@ -180,7 +180,7 @@ def run_protocols(jobs: list[tuple[BuiltBat, ProtocolSpec, BallSpec]], engine: E
 def protocol_steps(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engine: Engine,
                    created: str) -> Steps:
     """The steps of :func:`run_protocol` (a generator for :func:`drive`): the protocol's
-    barrel tests (:mod:`batcert.methods.abi`) and the impacts; with a break-in that applies,
+    barrel tests (:mod:`batcert.runner.barrel_tests`) and the impacts; with a break-in that applies,
     the impacts before it too (the result is after it, with the before in ``break_in``)."""
     p = protocol
     check_applicable(p, built)

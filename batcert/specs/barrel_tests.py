@@ -1,6 +1,6 @@
 """A protocol's static tests of a hollow barrel: the barrel compression test and the
 accelerated break-in (ABI) that uses it (fields only; the procedure is
-:mod:`batcert.methods.abi`)."""
+:mod:`batcert.runner.barrel_tests`)."""
 
 from __future__ import annotations
 

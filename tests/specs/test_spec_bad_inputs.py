@@ -58,6 +58,10 @@ CASES: dict[str, list[Expect]] = {
     ],
     "bat-layup-on-solid.yaml": [Expect(6, "layup", "only a hollow bat has a wall to lay up")],
     "bat-layup-overlap.yaml": [Expect(10, "layup[1].span", "overlaps span 0")],
+    "protocol-break-in-without-compression.yaml": [
+        Expect(14, "break_in", "the break-in reads the barrel's compression: add "
+                               "`barrel_compression`"),
+    ],
     "bat-bare-number.yaml": [
         Expect(4, "length", "a unit is required (e.g. '34 in'), got the bare number 34"),
     ],

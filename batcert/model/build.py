@@ -11,8 +11,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 from batcert.conventions import STANDARD_GRAVITY
 from batcert.errors import ModelError
 from batcert.model.calibrate import calibrate_barrel, calibrate_stiffness
@@ -66,15 +64,11 @@ def _barrel_text(corr: dict[str, float]) -> str:
 
 def _material(spec: BatSpec) -> Material:
     """The bat's material; where a layup covers the whole bat and none is given, that of the
-    span holding the largest diameter (:func:`stack_material`)."""
+    span holding the barrel's middle (:func:`stack_material`)."""
     if spec.material is not None:
         return spec.material
-    z, d = spec.profile
-    widest = z[int(np.argmax(d))]
-    for start, end, stack in spec.layup:
-        if start <= widest <= end:
-            return stack_material(stack)
-    return stack_material(spec.layup[-1][2])
+    i = spec.layup_span_at(spec.barrel_middle)
+    return stack_material(spec.layup[-1 if i is None else i][2])
 
 
 def _wall_stations(spec: BatSpec):

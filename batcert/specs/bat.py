@@ -243,6 +243,21 @@ class BatSpec:
         return self.source.path
 
     @property
+    def barrel_middle(self) -> float:
+        """The middle of the barrel [m from knob]: halfway between the first and the last
+        profile station at the largest diameter."""
+        z, d = self.profile
+        top = [zi for zi, di in zip(z, d, strict=True) if di >= max(d)]
+        return 0.5 * (top[0] + top[-1])
+
+    def layup_span_at(self, z: float) -> int | None:
+        """The index of the ``layup`` span holding ``z`` [m from knob], or None."""
+        for i, (start, end, _) in enumerate(self.layup):
+            if start <= z <= end:
+                return i
+        return None
+
+    @property
     def sha256(self) -> str:
         return self.source.sha256
 

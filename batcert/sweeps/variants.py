@@ -15,57 +15,17 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
-from batcert.errors import UsageProblem
 from batcert.model.build import BuiltBat, measured_properties
 from batcert.model.mass import mass_properties
 from batcert.specs.bat import BatSpec, MeasuredSpec
 from batcert.specs.protocol import ConditionSpec, ProtocolSpec
-
-
-@dataclass(frozen=True)
-class Case:
-    """What one variant is made from: a bat spec and a protocol (picklable, for workers)."""
-
-    bat: BatSpec
-    protocol: ProtocolSpec
-
-
-@dataclass(frozen=True)
-class Parameter:
-    """One parameter a sweep can vary."""
-
-    name: str
-    label: str  # the name in words, for reports' axes and legends ("bat angular speed")
-    dimension: str | None  # a batcert.units dimension, None for a plain number
-    changes: str  # geometry | measured | protocol
-    doc: str
-    nominal: Callable[[Case, BuiltBat], float | None]  # the nominal value [SI], if any
-    apply: Callable[[Case, BuiltBat, float], Case]  # the case with the value [SI]
-    bounds: tuple[float, float]  # accepted values [SI] (the bat file's field ranges)
-    tolerance: float  # default tolerance of `batcert design` [SI]
-
-
-class ParameterError(UsageProblem):
-    """A parameter or value a sweep cannot use (exit 2, before any work)."""
-
-
-# ---- geometry and material ----------------------------------------------------------------
-
-def geometry_only(spec: BatSpec) -> BatSpec:
-    """The bat as its geometry gives it: no measured block (hence no reconciliation and no
-    frequency or barrel calibration)."""
-    return replace(spec, measured=None)
-
-
-def _hollow(case: Case, what: str) -> None:
-    if case.bat.construction != "hollow":
-        raise ParameterError(f"{what} needs a hollow bat; {case.bat.name!r} is solid")
+from batcert.sweeps.cases import Case, Parameter, ParameterError, geometry_only, hollow
+from batcert.sweeps.layup_variants import LAYUP_PARAMETERS
 
 
 def _walls(spec: BatSpec) -> tuple[tuple[float, ...], tuple[float, ...]]:
@@ -78,7 +38,7 @@ def _walls(spec: BatSpec) -> tuple[tuple[float, ...], tuple[float, ...]]:
 
 
 def _wall_nominal(case: Case, built: BuiltBat) -> float:
-    _hollow(case, "wall")
+    hollow(case, "wall")
     return max(_walls(case.bat)[1])
 
 
@@ -152,7 +112,7 @@ def _explicit(case: Case, built: BuiltBat) -> MeasuredSpec:
 def _measured(field: str):
     def nominal(case: Case, built: BuiltBat) -> float | None:
         if field == "hoop_frequency":
-            _hollow(case, field)
+            hollow(case, field)
             m = case.bat.measured
             return None if m is None or m.hoop_frequency is None else m.hoop_frequency
         return float(getattr(_explicit(case, built), field))
@@ -270,6 +230,7 @@ PARAMETERS: dict[str, Parameter] = {p.name: p for p in (
     _param("hoop_frequency", "hoop frequency", "frequency", "measured", "The measured barrel hoop (n = 2) "
            "frequency of a hollow bat; the barrel is calibrated to it.", _hoop[0], _hoop[1],
            (100.0, 20000.0), 0.5),
+    *LAYUP_PARAMETERS,
     _param("pitch_speed", "pitch speed", "speed", "protocol", "Ball speed toward the bat, in every condition "
            "that pitches the ball (stationary-ball set-ups stay stationary unless no "
            "condition pitches).", _speed_nominal("pitch_speed"), _speed_apply("pitch_speed"),

@@ -349,5 +349,5 @@ def test_the_help_and_the_docs_list_every_parameter_of_the_registry(batcert_cli)
     rows = re.findall(r"^\| `(\w+)` \| ([\w ]+) \|", (REPO / "docs" / "sweeps.md").read_text(
         encoding="utf-8"), re.M)
     assert [r[0] for r in rows] == list(PARAMETERS)
-    assert all(p.dimension.replace("_", " ") == unit
+    assert all((p.dimension or "number").replace("_", " ") == unit
                for (_, unit), p in zip(rows, PARAMETERS.values(), strict=True))

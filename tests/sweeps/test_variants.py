@@ -55,7 +55,8 @@ def ash():
 # ---- ranges ---------------------------------------------------------------------------------
 def test_registry_names_follow_the_glossary():
     assert list(PARAMETERS) == ["wall", "youngs_modulus", "density", "barrel_diameter", "mass",
-                                "moi", "hoop_frequency", "pitch_speed", "bat_angular_speed",
+                                "moi", "hoop_frequency", "ply_angle", "ply_count",
+                                "wall_split", "pitch_speed", "bat_angular_speed",
                                 "relative_speed"]
     for name, p in PARAMETERS.items():
         assert p.name == name and p.changes in ("geometry", "measured", "protocol")

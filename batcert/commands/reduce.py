@@ -10,8 +10,11 @@ import numpy as np
 from batcert.commands.inputs import ProtocolInputs, load_protocol_any
 from batcert.lab.certify import DECISION_RULES, MC_DRAWS, Certified, certify, guard_band
 from batcert.lab.session import LabSession, load_lab_session
+from batcert.model.break_in import breaks_in
 from batcert.results.lab import LabHit, LabLocation, LabResult
+from batcert.results.run import BreakInResult
 from batcert.results.serialise import utc_now
+from batcert.runner.barrel_tests import measured_history
 from batcert.runner.runner import decide, identification
 from batcert.specs.protocol import ProtocolSpec
 from batcert.specs.resolve import display_path
@@ -69,6 +72,22 @@ def _barrel_fits(session, protocol, ball, engine: str, c) -> tuple[list[dict[str
     return [asdict(f) for f in cal.fits], warnings
 
 
+def _break_in(session: LabSession, p: ProtocolSpec) -> BreakInResult | None:
+    """The session's measured break-in, judged by the protocol's rules (the shipped defaults
+    where the protocol has none), or None."""
+    readings = session.spec.break_in
+    if readings is None:
+        return None
+    if p.break_in is None:
+        from batcert.errors import UsageProblem
+        raise UsageProblem(f"the session gives break-in readings, but protocol {p.id!r} has "
+                           "no break_in to judge them by")
+    out = measured_history(list(readings["compression"]), readings["new_compression"],
+                           p.break_in)
+    out.source = readings["source"] or ""
+    return out
+
+
 def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
                engine: str = "flexible", bat: str | None = None) -> LabResult:
     """Load, reduce, certify and decide; and the model's prediction of the same test.
@@ -81,6 +100,16 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
     red, c = certify(session, p, limit)
     barrel_fits, barrel_warnings = _barrel_fits(session, p, pin.ball, engine, c)
     margin, verdict = decide(c.value, p.limit, guard_band(decision_rule, c.expanded))
+    break_in = _break_in(session, p)
+    if break_in is not None and "incomplete" in break_in.outcome:
+        barrel_warnings.append(f"accelerated break-in: {break_in.outcome}; the hits do not "
+                               "follow a completed break-in")
+    if break_in is None and p.break_in is not None and p.barrel_compression is not None \
+            and breaks_in(session.built.model, session.built.model.length
+                          - p.barrel_compression.position):
+        barrel_warnings.append("the bat's barrel breaks in (composite plies) and the protocol "
+                               "tests it after an accelerated break-in, but the session gives "
+                               "no break-in readings (`break_in.compression`)")
     h = session.hits
     spec, bat_spec = session.spec, session.built.spec
     location_from_tip = c.scan[c.location].from_tip if c.location is not None else None
@@ -102,7 +131,8 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
         inputs=_inputs(session, p), batcert_version=__version__, created=utc_now(),
         lab={k: v for k, v in (spec.lab or {}).items() if v is not None},
         barrel_fits=barrel_fits,
-        model=_model(session, p, pin.ball, engine, location_from_tip, c.value))
+        model=_model(session, p, pin.ball, engine, location_from_tip, c.value),
+        break_in=break_in)
 
 
 def _session(session_path: str, pin: ProtocolInputs, bat: str | None) -> LabSession:

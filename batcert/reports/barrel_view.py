@@ -7,7 +7,7 @@ from typing import Any
 
 from batcert.reports import format as fmt
 from batcert.reports.table import Table
-from batcert.results.run import RunResult
+from batcert.results.run import BreakInResult, RunResult
 
 
 def compression_table(result: RunResult) -> Table | None:
@@ -34,11 +34,7 @@ def break_in_view(result: RunResult) -> dict[str, Any] | None:
     b = result.break_in
     if b is None:
         return None
-    history = Table(["Passes", "Damage (E2, G12 lost)", "Compression", "Drop from initial"],
-                    [[str(s.passes), fmt.DASH if s.damage is None else f"{100 * s.damage:.1f} %",
-                      fmt.quantity(s.force, "force", 0), f"{100 * s.drop:.2f} %"]
-                     for s in _shown(b.steps)],
-                    numeric=[True, True, True, True])
+    history = history_table(b)
     name = fmt.metric_name(result.metric)
     compare = None
     if b.value_before is not None:
@@ -51,6 +47,21 @@ def break_in_view(result: RunResult) -> dict[str, Any] | None:
              f"emulated: each rolling pass adds {100 * b.damage_per_pass:g} % damage (assumed)")
     return {"outcome": b.outcome, "basis": basis, "history": history, "compare": compare,
             "source": b.source}
+
+
+def history_table(b: BreakInResult) -> Table:
+    """A break-in's compression readings, pass by pass (a long history shortened)."""
+    head = ["Passes", "Damage (E2, G12 lost)", "Compression", "Drop from initial"]
+    if b.measured:
+        head.pop(1)
+    rows = []
+    for s in _shown(b.steps):
+        row = [str(s.passes), fmt.DASH if s.damage is None else f"{100 * s.damage:.1f} %",
+               fmt.quantity(s.force, "force", 0), f"{100 * s.drop:.2f} %"]
+        if b.measured:
+            row.pop(1)
+        rows.append(row)
+    return Table(head, rows, numeric=[True] * len(head))
 
 
 def _shown(steps: list) -> list:

@@ -7,6 +7,7 @@ from __future__ import annotations
 from typing import Any
 
 from batcert.reports import format as fmt
+from batcert.reports.barrel_view import history_table
 from batcert.reports.compare_view import VERDICT_BADGES, badge
 from batcert.reports.figure import LineFigure
 from batcert.reports.svg import Point, Series, VLine
@@ -69,6 +70,9 @@ def lab_view(result: LabResult, charts: bool = True) -> dict[str, Any]:
             "warnings": result.warnings, "inputs": result.inputs,
             "figures": [{"svg": Markup(svg_of(f)) if charts else "", "caption": f.caption,
                          "title": f.title} for f in figs],
+            "break_in": None if result.break_in is None else {
+                "outcome": result.break_in.outcome, "source": result.break_in.source,
+                "history": history_table(result.break_in)},
             "date": fmt.created(result.created),
             "print_header": " \u2014 ".join(x for x in (
                 result.lab.get("certificate_number"), result.bat, result.protocol,

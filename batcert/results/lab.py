@@ -7,6 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from batcert.results.run import BreakInResult
 from batcert.results.serialise import Serialisable
 
 
@@ -89,6 +90,7 @@ class LabResult(Serialisable):
     # location_from_tip [m], at_certified_location, difference = measured - model)
     model: dict[str, Any] = field(default_factory=dict)
     bat_identification: dict[str, str] = field(default_factory=dict)  # maker, model, serial, lot
+    break_in: BreakInResult | None = None  # the measured accelerated break-in before the hits
 
     def return_code(self) -> int:
         """0 when the measured value passes (or the protocol sets no limit), 1 when it fails or

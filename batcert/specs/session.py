@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from batcert.conventions import DEFAULT_PIVOT
+from batcert.errors import Collector
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked, sha256_of, spec_from
 from batcert.specs.hits import read_hits_bytes
 from batcert.specs.schema import (
@@ -19,6 +20,7 @@ from batcert.specs.schema import (
     integer,
     label,
     list_of,
+    lookup,
     quantity,
     section,
     text,
@@ -49,6 +51,24 @@ LAB_SCHEMA = Schema("laboratory", (
           "Who approves the certificate (name, role)."),
 ))
 
+def _check_readings(v: dict, data: Located, errors: Collector, path: str) -> None:
+    if v["compression"] is not None and any(f is None or f <= 0 for f in v["compression"]):
+        errors.add(lookup(data, "compression")[0], f"{path}.compression",
+                   "every compression reading must be a positive force")
+
+
+BREAK_IN_READINGS_SCHEMA = Schema("measured break-in", (
+    Field("compression", list_of(quantity("force", positive=True), min_items=1,
+                                 describe="forces: before rolling, then after each pass"),
+          "The barrel compression before rolling, then after each rolling pass.",
+          required=True),
+    Field("new_compression", quantity("force", positive=True), "The compression of the bat "
+          "new (the maker's, or of an unused sample): the skip rule compares the first reading "
+          "with it."),
+    Field("source", text(), "Who measured it, with which tester and conventions."),
+), checks=(_check_readings,))
+
+
 SESSION_SCHEMA = Schema("hit session", (
     Field("name", label(), "Session name shown in reports.", required=True),
     *HEADER_FIELDS,
@@ -75,6 +95,9 @@ SESSION_SCHEMA = Schema("hit session", (
           "are invalid (the ball must be replaced)."),
     Field("uncertainty", section(UNCERTAINTY_SCHEMA), "Standard uncertainties of the "
           "instruments and of the inputs (GUM, JCGM 100); zero where not given."),
+    Field("break_in", section(BREAK_IN_READINGS_SCHEMA), "Composite bats: the barrel "
+          "compression measured through the accelerated break-in (ABI) before these hits; "
+          "checked against the protocol's `break_in` rules and shown on the certificate."),
     Field("lab", section(LAB_SCHEMA), "The laboratory, operator, customer, bat serial, dates and "
           "signatures printed on the certificate."),
 ))
@@ -101,6 +124,7 @@ class SessionSpec:
     hits_per_ball: int | None
     uncertainty: dict | None  # speed [m/s], impact_location [m], moi [kg m^2], ball_mass [kg]
     lab: dict | None  # laboratory, accreditation, operator, ... (text), signatures (list)
+    break_in: dict | None = None  # compression [N, list], new_compression [N], source
 
     @property
     def path(self) -> str:

@@ -20,6 +20,7 @@ from batcert.results.league import BatLeagueResult, LeagueResult, RuleResult
 from batcert.results.run import RunResult
 from batcert.results.serialise import utc_now
 from batcert.specs.kinds import RULE_KINDS
+from batcert.specs.league import runs_protocol
 from batcert.specs.materials import PLIES
 from batcert.units import INCH, OUNCE
 from batcert.version import __version__
@@ -171,6 +172,25 @@ def _performance(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleResu
                       metric=run.metric, note=note)
 
 
+def _min_compression(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleResult:
+    if run is None:
+        raise ValueError(f"rule {rule.id!r} needs the result of protocol {rule.protocol!r}")
+    c = run.compression
+    if c is None:
+        return RuleResult(rule.id, "", rule.kind, None, rule.limit, "not-modelled", "N",
+                          protocol=run.protocol,
+                          note=f"protocol {run.protocol} has no barrel compression test, or "
+                               "the bat has no hollow barrel")
+    margin = _at_limit(c.force - rule.limit, rule.limit)
+    after = " after the break-in" if run.break_in is not None and run.break_in.applies else ""
+    note = (f"model: force on one platen at {c.deflection * 1e3:.3f} mm approach, platens "
+            f"{c.platen_width * 1e3:.1f} mm wide {c.position * 1e3:.1f} mm from the tip"
+            f"{after}, under {run.protocol}")
+    return RuleResult(rule.id, "", rule.kind, c.force, rule.limit,
+                      "pass" if margin >= 0 else "fail", "N", margin=margin,
+                      protocol=run.protocol, note=note)
+
+
 # how each kind of rule (:data:`batcert.specs.kinds.RULE_KINDS`: its name, meaning, limit
 # and unit) is evaluated on a bat; None: it cannot be
 EVALUATIONS: dict[str, Callable[[RuleSpec, BatFacts, RunResult | None], RuleResult] | None] = {
@@ -181,6 +201,7 @@ EVALUATIONS: dict[str, Callable[[RuleSpec, BatFacts, RunResult | None], RuleResu
     "construction": _construction,
     "material": _material,
     "performance": _performance,
+    "min-barrel-compression": _min_compression,
     "other": None,
 }
 
@@ -200,8 +221,7 @@ def applies(rule: RuleSpec, f: BatFacts) -> bool | None:
 
 def needs_run(rule: RuleSpec, f: BatFacts) -> bool:
     """Whether evaluating ``rule`` on this bat needs a protocol run."""
-    return (rule.kind == "performance" and rule.status == "modelled"
-            and applies(rule, f) is True)
+    return runs_protocol(rule.kind) and rule.status == "modelled" and applies(rule, f) is True
 
 
 def _scope_text(rule: RuleSpec, f: BatFacts) -> str:

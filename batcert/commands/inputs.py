@@ -79,11 +79,12 @@ def load_league_any(value: str) -> LeagueSpec:
 
 
 def league_protocols(spec: LeagueSpec) -> dict[str, ProtocolInputs]:
-    """The protocol (with its ball) of each modelled performance rule, by rule id; a name or
+    """The protocol (with its ball) of each modelled rule that runs one, by rule id; a name or
     path that does not resolve is invalid input at the rule's ``protocol:`` line."""
+    from batcert.specs.league import runs_protocol  # not on a run's path
     out: dict[str, ProtocolInputs] = {}
     for i, rule in enumerate(spec.rules):
-        if rule.kind == "performance" and rule.status == "modelled" and rule.protocol:
+        if runs_protocol(rule.kind) and rule.status == "modelled" and rule.protocol:
             try:
                 path = resolve("protocol", rule.protocol, relative_to=Path(spec.path))
             except NotFound as exc:

@@ -50,7 +50,7 @@ CLAIM_CHECKS: dict[str, ClaimKind] = {c.name: c for c in (
 @dataclass(frozen=True)
 class RuleKind:
     """One kind of league rule: what it checks, what its ``limit`` is (``length``, ``number``,
-    ``metric``: a number, or a speed for an exit-speed protocol; None: no limit; the league
+    ``force``, ``metric``: a number, or a speed for an exit-speed protocol; None: no limit; the league
     schema reads it accordingly), what else it needs, and the unit of its value and limit in
     results."""
 
@@ -72,5 +72,8 @@ RULE_KINDS: dict[str, RuleKind] = {k.name: k for k in (
              "metal, composite)", None, ("allowed",)),
     RuleKind("performance", "the protocol's aggregated metric at most `limit` + `tolerance`",
              "metric", ("protocol",)),
+    RuleKind("min-barrel-compression", "the barrel compression force of `protocol`'s "
+             "compression test (its `barrel_compression`, after its break-in where it has one) "
+             "at least `limit` (a force)", "force", ("protocol",), unit="N"),
     RuleKind("other", "any other requirement (only with status: not-modelled)", None),
 )}

@@ -45,10 +45,16 @@ CONFIDENCE = ("H", "M", "L", "D")
 LIMIT_KINDS: dict[str, Kind] = {
     "length": quantity("length", positive=True),
     "number": number(),
+    "force": quantity("force", positive=True),
     "metric": one_of(number(minimum=-METRIC_BOUND, maximum=METRIC_BOUND),
                      quantity("speed", minimum=0.0), describe="a number, or a speed for an "
                      "exit-speed protocol"),
 }
+
+
+def runs_protocol(kind: str) -> bool:
+    """Whether a rule of ``kind`` reads a protocol's run (its kind needs ``protocol``)."""
+    return "protocol" in RULE_KINDS[kind].needs
 
 
 def _raw() -> Kind:
@@ -136,8 +142,8 @@ RULE_SCHEMA = Schema("league rule", (
     Field("required", choice("solid", "hollow"), "Construction rules: the required construction."),
     Field("allowed", list_of(text(), min_items=1, describe="list of material names or classes"),
           "Material rules: allowed library materials or classes (wood, metal, composite)."),
-    Field("protocol", text(), "Performance rules: shipped protocol id or path (relative to this "
-          "file). The rule's limit replaces the protocol's own."),
+    Field("protocol", text(), "Performance and compression rules: shipped protocol id or path "
+          "(relative to this file). A performance rule's limit replaces the protocol's own."),
     Field("applies_to", choice("all", "wood", "non-wood"), "Which bats the rule applies to.",
           default="all"),
     Field("applies_from_length", quantity("length", positive=True), "The rule covers only bats "
@@ -223,7 +229,7 @@ def load_league(path: str | Path) -> LeagueSpec:
         if r["id"] in ids[:i]:
             errors.add(lookup(data, "rules", i, "id")[0], f"rules[{i}].id",
                        f"duplicate rule id {r['id']!r}")
-        if r["kind"] == "performance" and r["status"] == "modelled" and r["protocol"]:
+        if runs_protocol(r["kind"]) and r["status"] == "modelled" and r["protocol"]:
             try:
                 resolve("protocol", r["protocol"], relative_to=Path(path))
             except NotFound as exc:

@@ -37,9 +37,28 @@ def inspect_bat(built: BuiltBat, pivot: float | None = None, with_modes: bool = 
                      "moi_pivot": mp.geometry_moi_pivot},
         "reconciliation": {k: v for k, v in asdict(built.reconciliation).items()},
     }
+    if built.spec.layup:
+        info["layup"] = layup_summary(built)
     if with_modes:
         info.update(bat_dynamics(built, pivot))
     return rounded(info)
+
+
+def layup_summary(built: BuiltBat) -> list[dict]:
+    """Each ``layup`` span of the bat: its walls and plies as the file gives them, and the
+    stack's thickness, mass per area and wall law (A [N/m], B [N], D [N m]; x along the bat,
+    y around it) new and after the model's break-in."""
+    out = []
+    for start, end, stack in built.spec.layup:
+        law = stack.law(built.model.wall_damage)
+        out.append({
+            "start": start, "end": end, "thickness": stack.thickness,
+            "areal_density": sum(lam.areal_density for lam in stack.laminates()),
+            "walls": [[{"material": layer.ply.name, "angle_deg": float(np.degrees(layer.angle)),
+                        "balanced": layer.balanced, "thickness": layer.thickness}
+                       for layer in wall] for wall in stack.walls],
+            "a": law[:3, :3].tolist(), "b": law[:3, 3:].tolist(), "d": law[3:, 3:].tolist()})
+    return out
 
 
 SIGNIFICANT = 6  # digits kept by inspect: more than the inputs (3-4 digits) or the engine carry

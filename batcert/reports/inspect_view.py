@@ -37,9 +37,27 @@ def bat_view(info: dict) -> list[Block]:
         out.append(("free-free bending modes",
                     Table(["mode", "frequency [Hz]", "nodes [cm from knob]"], rows,
                           [False, True, True])))
+    if info.get("layup"):
+        out.append(("layup (walls innermost first, plies inside out)", _layup(info["layup"])))
     if info.get("barrel"):
         out.append(("barrel (shell of revolution; SI: m, Hz)", list(flatten(info["barrel"]))))
     return out
+
+
+def _layup(spans: list[dict]) -> Table:
+    """One row per span: where, its walls' plies, thickness, mass per area, and the hoop and
+    axial stiffnesses that matter most (``D22`` bends the barrel oval, ``A11`` stretches it
+    along the bat)."""
+    rows = []
+    for s in spans:
+        walls = " | ".join(", ".join(
+            f"{p['material']} {'±' if p['balanced'] else ''}{p['angle_deg']:g}° "
+            f"{p['thickness'] * 1e3:g}" for p in wall) for wall in s["walls"])
+        rows.append([f"{s['start'] * 100:.1f}-{s['end'] * 100:.1f}", walls,
+                     f"{s['thickness'] * 1e3:.2f}", f"{s['areal_density']:.2f}",
+                     f"{s['d'][1][1]:.3g}", f"{s['a'][0][0]:.3g}"])
+    return Table(["span [cm]", "walls: plies (mm)", "t [mm]", "kg/m²", "D22 [N m]",
+                  "A11 [N/m]"], rows, [False, False, True, True, True, True])
 
 
 _TEST_UNITS = {"cor": ("", 1.0, "{:.3f}"), "cylinder_cor": ("", 1.0, "{:.3f}"),

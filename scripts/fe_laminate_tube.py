@@ -39,14 +39,18 @@ Cases (the same output quantities and names as fe_tube_reference.py):
 
 Usage
   python scripts/fe_laminate_tube.py --quick                 # both layups, cases A and C,
-                                                             # mesh 'quick' (~30 s per layup)
-  python scripts/fe_laminate_tube.py --out raw.json          # full run: meshes quick, M1, M2
-                                                             # (see LEVELS; ~25 min on 2 cores)
+                                                             # mesh 'quick' (~25 s per layup)
+  python scripts/fe_laminate_tube.py --out raw.json          # full run: --selftest, --verify,
+                                                             # cases A-D on meshes quick, M1-nr1
+                                                             # and M1 (see LEVELS; TIMING_FULL)
   python scripts/fe_laminate_tube.py --record raw.json       # write the compact reference
                                                              # (--to PATH to redirect)
   python scripts/fe_laminate_tube.py --verify                # full-360 model vs symmetry classes
-  python scripts/fe_laminate_tube.py --selftest              # assembly checks
-Units inside: SI (m, N, Pa, kg, s).  Recorded: Hz, and m per 1000 N resultant.
+  python scripts/fe_laminate_tube.py --selftest              # assembly checks (~80 s)
+The raw output (--out) holds fe_tube_reference's quantities, displacements in mm; the compact
+reference (--record) holds frequencies in Hz and squeeze displacements in m per 1000 N.
+Units inside: SI (m, N, Pa, kg, s).  The solver is fe_tube_reference's (SciPy SuperLU, or MKL
+PARDISO where pypardiso is installed).
 """
 import argparse
 import json
@@ -497,11 +501,15 @@ def verify(layup='cross-ply-unsym', h_th=6.0e-3, h_z=10.0e-3, nr=1, k_full=40):
     n_sym_below = int(np.sum(fs < fmax))
     n_full_below = int(np.sum(ff < fmax))
     elastic = [r for r in rows if abs(r['full']['f_Hz']) > 1.0]
+    # and the two sorted spectra below fmax, pairwise (degenerate pairs included)
+    fe_, se_ = np.sort(ff[(ff > 1.0) & (ff < fmax)]), np.sort(fs[(fs > 1.0) & (fs < fmax)])
+    sorted_diff = float(np.abs(fe_ / se_ - 1).max()) if fe_.size == se_.size else None
     return dict(layup=layup, mesh=dict(nr_per_ply=nr, h_th=h_th, h_z=h_z, n_theta_full=4 * nq, n_z_full=2 * nzh,
                                        ndof_full=full.N, ndof_eighth=eighth.N),
                 time_full_s=tfull, time_total_s=time.time() - T0,
                 n_modes_full=k_full, n_elastic=len(elastic),
                 max_rel_diff_elastic=float(max(abs(r['rel_diff']) for r in elastic)),
+                max_rel_diff_sorted_spectra=sorted_diff,
                 f_max_Hz=fullm[-1]['f_Hz'], n_full_below_fmax=n_full_below, n_sym_below_fmax=n_sym_below,
                 rows=rows)
 
@@ -686,8 +694,9 @@ def main():
             log('%10.2f  n=%d ch=%d %-40s | sym %10.2f %s n=%d ch=%d  d=%.1e' % (
                 r['full']['f_Hz'], r['full']['n'], r['full']['axial_sign_changes'], r['full']['type'],
                 r['sym_f_Hz'], r['sym_class'], r['sym_n'], r['sym_axial_sign_changes'], r['rel_diff']))
-        log('max |rel diff| (elastic modes) %.1e; modes below %.0f Hz: full %d, symmetry classes %d' % (
-            v['max_rel_diff_elastic'], v['f_max_Hz'], v['n_full_below_fmax'], v['n_sym_below_fmax']))
+        log('max |rel diff| (elastic modes) %.1e; modes below %.0f Hz: full %d, symmetry classes %d; '
+            'sorted spectra %s' % (v['max_rel_diff_elastic'], v['f_max_Hz'], v['n_full_below_fmax'],
+                                   v['n_sym_below_fmax'], v['max_rel_diff_sorted_spectra']))
         return
     levels = ['quick'] if args.quick else args.levels
     cases = 'AC' if args.quick else args.cases

@@ -52,9 +52,11 @@ LIMIT_KINDS: dict[str, Kind] = {
 }
 
 
-def runs_protocol(kind: str) -> bool:
-    """Whether a rule of ``kind`` reads a protocol's run (its kind needs ``protocol``)."""
-    return "protocol" in RULE_KINDS[kind].needs
+def runs_protocol(kind: str | None) -> bool:
+    """Whether a rule of ``kind`` reads a protocol's run (its kind needs ``protocol``); False
+    for a kind that did not parse."""
+    entry = RULE_KINDS.get(kind) if isinstance(kind, str) else None
+    return entry is not None and "protocol" in entry.needs
 
 
 def _raw() -> Kind:

@@ -125,18 +125,18 @@ def test_static_squeeze(layup, case):
 
 @pytest.mark.slow
 def test_the_fe_reference_reproduces(tmp_path):
-    # Re-run the independent model on its quick mesh (cases A and C, both layups, about a
-    # minute) and check it still gives the recorded numbers: the same mesh and solver, so only
-    # the eigensolver's tolerance separates them: 1e-6 relative.
+    # Re-run the independent model on its quick mesh (cases A and C, the symmetric layup, the
+    # one that disagrees most; about 25 s) and check it still gives the recorded numbers: the
+    # same mesh and solver, so only the eigensolver's tolerance separates them: 1e-6 relative.
     pytest.importorskip("skfem")
     import subprocess
 
     out = tmp_path / "quick.json"
     script = Path(__file__).resolve().parents[2] / "scripts" / "fe_laminate_tube.py"
-    subprocess.run([sys.executable, str(script), "--quick", "--out", str(out)], check=True,
-                   capture_output=True, timeout=900)
+    subprocess.run([sys.executable, str(script), "--quick", "--layups", "cross-ply-sym", "--out",
+                    str(out)], check=True, capture_output=True, timeout=900)
     runs = json.loads(out.read_text())["runs"]
-    for layup in LAYUPS:
+    for layup in ["cross-ply-sym"]:
         run, rec = runs[layup]["quick"], DATA["results"][layup]["quick"]
         for name, f in rec["free_free_hz"].items():
             assert run["A"][name]["f_Hz"] == pytest.approx(f, rel=1e-6), (layup, name)

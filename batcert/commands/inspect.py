@@ -94,7 +94,8 @@ def inspect_ball(ball: BallSpec, speeds=(1.0, 11.0, 25.9, 26.8, 45.0, 58.0, 60.8
     fit = None
     if ball.fit is not None:
         fit = {"chi2": ball.fit.chi2, "dof": ball.fit.dof,
-               "parameter_uncertainty": dict(ball.fit.uncertainty)}
+               "parameter_uncertainty": dict(ball.fit.uncertainty),
+               "held": list(ball.fit.held)}
     return rounded({"name": b.name, "file": ball.path, "sha256": ball.sha256, "mass": b.mass,
                     "radius": b.radius, "contact_model": b.contact_model,
                     "law": {**b.law.describe(), "summary": b.law.summary()}, "fit": fit, "tests": rows,

@@ -72,10 +72,15 @@ def ball_view(info: dict) -> list[Block]:
             ("radius", f"{info['radius'] * 1e3:.1f} mm"), ("contact law", info["law"]["summary"])]
     fit = info.get("fit")
     if fit:
-        u = fit["parameter_uncertainty"]
-        rows.append(("fitted to the tests", f"chi-square {fit['chi2']:.2f} for {fit['dof']} "
-                     f"degrees of freedom; u(a) = {u['exponent']:.2g}, u(tau) = "
-                     f"{u['relaxation_time'] * 1e6:.2g} us"))
+        u, held = fit["parameter_uncertainty"], fit.get("held", [])
+        shown = [f"u(a) = {u['exponent']:.2g}" if "exponent" not in held else "",
+                 f"u(tau) = {u['relaxation_time'] * 1e6:.2g} us"
+                 if "relaxation_time" not in held else ""]
+        text = (f"chi-square {fit['chi2']:.2f} for {fit['dof']} degrees of freedom"
+                + "".join(f"; {x}" for x in shown if x))
+        if held:
+            text += f"; held as given: {', '.join(h.replace('_', ' ') for h in held)}"
+        rows.append(("fitted to the tests", text))
     out.append((info["name"], rows))
     if info["tests"]:
         table = []

@@ -21,7 +21,8 @@ from typing import Any
 from batcert.errors import Collector, InputError, Problem
 from batcert.physics.ball import BallModel
 from batcert.physics.balls import LAWS, ContactLaw, PowerLawHysteresis, Viscoelastic
-from batcert.physics.balls.fit import BallFit, BallTest, FitError, cached_fit
+from batcert.physics.balls.fit import BallFit, BallTest, FitError
+from batcert.physics.balls.fit_kept import cached_fit
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked
 from batcert.specs.schema import (
     Field,
@@ -175,7 +176,8 @@ _VISCOELASTIC = ("stiffness", "exponent", "relaxed_fraction", "relaxation_time")
 
 def _contact_check(values: dict, data, errors: Collector, path: str) -> None:
     """Each law's own parameters: Nathan's needs ``k1`` and ``alpha``; the viscoelastic law
-    takes all four of its parameters or none (then they are fitted to the tests)."""
+    takes any of its four parameters (those not given are fitted to the tests, the given ones
+    held: a ball known only by its marks)."""
     model = values["model"]
     own = _HYSTERESIS if model == "power-law-hysteresis" else _VISCOELASTIC
     for name in _HYSTERESIS + _VISCOELASTIC:
@@ -187,10 +189,6 @@ def _contact_check(values: dict, data, errors: Collector, path: str) -> None:
         for name in own:
             if values.get(name) is None:
                 errors.add(data.line, f"{path}.{name}", "required by the power-law-hysteresis law")
-    if model == "viscoelastic" and 0 < len(given) < len(own):
-        missing = [n for n in own if values.get(n) is None]
-        errors.add(data.line, path, f"give all four parameters of the viscoelastic law or none "
-                   f"(none: they are fitted to the ball tests); missing: {', '.join(missing)}")
 
 
 CONTACT_SCHEMA = Schema("contact law", (
@@ -202,7 +200,8 @@ CONTACT_SCHEMA = Schema("contact law", (
     Field("alpha", number(minimum=1.0, maximum=3.0), "power-law-hysteresis: compression "
           "exponent."),
     Field("stiffness", number(minimum=1e3, maximum=1e13), "viscoelastic: instantaneous "
-          "stiffness k0 [N/m^exponent] (omit the four to fit them)."),
+          "stiffness k0 [N/m^exponent]. Any of the four parameters omitted is fitted to the "
+          "ball tests; those given are held (a ball known only by its marks)."),
     Field("exponent", number(minimum=1.0, maximum=3.0), "viscoelastic: exponent a of u^a."),
     Field("relaxed_fraction", number(exclusive_minimum=0.0, maximum=1.0), "viscoelastic: "
           "relaxed over instantaneous stiffness."),
@@ -261,17 +260,18 @@ def load_ball(path: str | Path) -> BallSpec:
         cor = v["cor"]
         law: ContactLaw = PowerLawHysteresis(
             c["k1"], c["alpha"], tuple(p.condition for p in cor), tuple(p.value for p in cor))
-    elif c["stiffness"] is not None:
+    elif all(c[n] is not None for n in _VISCOELASTIC):
         law = Viscoelastic(c["stiffness"], c["exponent"], c["relaxed_fraction"],
                            c["relaxation_time"])
     else:
-        fit = _fitted(path, data, tests, float(mass), radius)
+        held = tuple((n, float(c[n])) for n in _VISCOELASTIC if c[n] is not None)
+        fit = _fitted(path, data, tests, float(mass), radius, held)
         law = fit.law
     model = BallModel(v["name"], mass, radius, law)
     return BallSpec(Source.of(path, data), v["name"], model, tests, fit)
 
 
-def _fitted(path, data, tests, mass: float, radius: float) -> BallFit:
+def _fitted(path, data, tests, mass: float, radius: float, held=()) -> BallFit:
     """:func:`cached_fit` of the file's tests; its refusal as an input error at the test."""
     problems = []
     for key, p in tests:
@@ -281,7 +281,7 @@ def _fitted(path, data, tests, mass: float, radius: float) -> BallFit:
     if problems:
         raise InputError(problems)
     try:
-        return cached_fit(ball_tests(tests), mass, radius)
+        return cached_fit(ball_tests(tests), mass, radius, held)
     except FitError as exc:
         if exc.test is not None:
             key, p = tests[exc.test]

@@ -32,11 +32,10 @@ reduced chi-square when it exceeds 1), and the parameters' change per unit shift
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from batcert import workspace
 from batcert.physics.balls import footprint
 from batcert.physics.balls.impact1d import body_impact, contact_time_estimate
 from batcert.physics.balls.viscoelastic import Viscoelastic, ViscoelasticMarch
@@ -96,6 +95,7 @@ class BallFit:
     # change of the fit's coordinates (log k0, a, logit r, log tau) when every COR test moves
     # up by one of its standard uncertainties (a livelier ball lot)
     lot_direction: tuple[float, ...] = (0.0, 0.0, 0.0, 0.0)
+    held: tuple[str, ...] = ()  # parameters held at given values, not fitted
 
     def moved(self, k: float) -> Viscoelastic:
         """The law of a ball lot whose every COR test lies ``k`` of its standard uncertainties
@@ -202,34 +202,42 @@ def _start(tests: tuple[BallTest, ...], mass: float) -> list[np.ndarray]:
     return starts
 
 
-def _solve(tests: tuple[BallTest, ...], mass: float, radius: float):
-    """The least-squares solution (module notes): ``(theta, residuals, jacobian)``; FitError
-    when no start converges."""
+def _solve(tests: tuple[BallTest, ...], mass: float, radius: float, fixed: Fixed = ()):
+    """The least-squares solution (module notes) over the parameters not in ``fixed``:
+    ``(theta, residuals, jacobian)``, ``theta`` all four coordinates, the Jacobian over the free
+    ones; FitError when no start converges."""
     from scipy.optimize import least_squares  # lazy: only a fit needs it
 
     value = np.array([t.value for t in tests])
     sigma = np.array([t.uncertainty for t in tests])
+    base, free = _split(fixed)
 
-    def residuals_of(thetas) -> np.ndarray:
-        laws = [_law(th) for th in thetas]
+    def full(x) -> np.ndarray:
+        theta = base.copy()
+        theta[free] = x
+        return theta
+
+    def residuals_of(xs) -> np.ndarray:
+        laws = [_law(full(x)) for x in xs]
         return (predict(laws, tests, mass, radius) - value) / sigma
 
-    def fun(theta):
-        return residuals_of([theta])[0]
+    def fun(x):
+        return residuals_of([x])[0]
 
-    def jac(theta):
-        steps = np.array([1e-3, 1e-3, 1e-3, 1e-3])
-        shifted = [theta] + [theta + np.eye(4)[i] * steps[i] for i in range(4)]
-        r = residuals_of(shifted)
-        return ((r[1:] - r[0]) / steps[:, None]).T
+    def jac(x):
+        steps = 1e-3 * np.eye(free.size)
+        r = residuals_of([x] + [x + d for d in steps])
+        return ((r[1:] - r[0]) / 1e-3).T
 
     lower = np.array([np.log(BOUNDS["stiffness"][0]), BOUNDS["exponent"][0],
-                      _logit(BOUNDS["relaxed_fraction"][0]), np.log(BOUNDS["relaxation_time"][0])])
+                      _logit(BOUNDS["relaxed_fraction"][0]),
+                      np.log(BOUNDS["relaxation_time"][0])])[free]
     upper = np.array([np.log(BOUNDS["stiffness"][1]), BOUNDS["exponent"][1],
-                      _logit(BOUNDS["relaxed_fraction"][1]), np.log(BOUNDS["relaxation_time"][1])])
+                      _logit(BOUNDS["relaxed_fraction"][1]),
+                      np.log(BOUNDS["relaxation_time"][1])])[free]
     best = None
     for start in _start(tests, mass):
-        start = np.clip(start, lower + 1e-6, upper - 1e-6)
+        start = np.clip(start[free], lower + 1e-6, upper - 1e-6)
         try:
             res = least_squares(fun, start, jac=jac, bounds=(lower, upper), x_scale="jac",
                                 xtol=1e-10, ftol=1e-10, max_nfev=60)
@@ -237,23 +245,44 @@ def _solve(tests: tuple[BallTest, ...], mass: float, radius: float):
             continue
         if best is None or res.cost < best.cost:
             best = res
-        if best.cost <= 0.5 * max(len(tests) - len(PARAMETERS), 1):  # chi2/dof <= 1: good
+        if best.cost <= 0.5 * max(len(tests) - free.size, 1):  # chi2/dof <= 1: good
             break
     if best is None:
         raise FitError("the fit of the viscoelastic ball to its tests did not converge")
-    return best.x, fun(best.x), jac(best.x)
+    return full(best.x), fun(best.x), jac(best.x)
 
 
-def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: float
-             ) -> BallFit:
+# parameters held at given values while the others are fitted: (name, SI value) pairs
+Fixed = tuple[tuple[str, float], ...]
+
+
+def _split(fixed: Fixed) -> tuple[np.ndarray, np.ndarray]:
+    """The fit's coordinates with the fixed parameters set (the others zero), and the indices
+    of the free ones."""
+    given = dict(fixed)
+    unknown = set(given) - set(PARAMETERS)
+    if unknown:
+        raise ValueError(f"not parameters of the viscoelastic law: {sorted(unknown)}")
+    filled = {"stiffness": 1.0, "exponent": 1.5, "relaxed_fraction": 0.5,
+              "relaxation_time": 1.0, **given}
+    base = _theta(Viscoelastic(*(filled[p] for p in PARAMETERS)))
+    return base, np.array([i for i, p in enumerate(PARAMETERS) if p not in given], dtype=int)
+
+
+def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: float,
+             fixed: Fixed = ()) -> BallFit:
     """Fit the viscoelastic law to ``tests`` of a ball of ``mass`` [kg] and ``radius`` [m]
-    (module notes); :class:`FitError` when the result cannot be trusted."""
+    (module notes), the parameters in ``fixed`` held at their given values (a ball known only
+    by its marks: module notes); :class:`FitError` when the result cannot be trusted."""
     tests = tuple(tests)
     kinds = {t.kind for t in tests}
-    if len(tests) < len(PARAMETERS):
-        raise FitError(f"the viscoelastic ball has {len(PARAMETERS)} parameters and the file "
-                       f"gives {len(tests)} ball tests: give at least {len(PARAMETERS)} (COR at "
-                       "several speeds and a contact time, peak force or compression)")
+    n_free = len(PARAMETERS) - len(fixed)
+    if len(tests) < n_free:
+        held = f" ({len(fixed)} held)" if fixed else ""
+        raise FitError(f"the viscoelastic ball has {n_free} parameters to fit{held} and the "
+                       f"file gives {len(tests)} ball tests: give at least {n_free} (COR at "
+                       "several speeds and a contact time, peak force or compression), or "
+                       "hold more of the law's parameters")
     if not kinds & {"cor", "cylinder_cor"} or not kinds & set(STIFFNESS_KINDS):
         raise FitError("the viscoelastic ball needs the COR at two or more speeds and at least "
                        "one test that measures its stiffness (collision_time, contact_time, "
@@ -264,13 +293,13 @@ def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: 
         raise FitError("every ball test of a fit needs its standard uncertainty",
                        int(np.argmin(sigma > 0)))
 
-    theta, r, jm = _solve(tests, mass, radius)
-    law = _law(theta)
-    dof = len(tests) - len(PARAMETERS)
+    theta, r, jm = _solve(tests, mass, radius, fixed)
+    law = replace(_law(theta), **dict(fixed))  # the held values exactly, not through exp(log)
+    dof = len(tests) - n_free
     chi2 = float(r @ r)
     jtj = jm.T @ jm
     if np.linalg.cond(jtj) > 1e12:
-        raise FitError("the ball tests do not determine the viscoelastic law's four parameters "
+        raise FitError("the ball tests do not determine the viscoelastic law's parameters "
                        "(the fit is singular): add a test of another kind or speed (COR at a "
                        "third speed, a contact or collision time, a peak force, a compression)")
     cov = np.linalg.inv(jtj) * max(1.0, chi2 / dof if dof > 0 else 1.0)
@@ -279,28 +308,32 @@ def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: 
         raise FitError(f"the fit puts the viscoelastic ball's {at_edge} at the edge of its "
                        "plausible range: the tests do not hold it (or are not of one ball)")
     if np.max(np.abs(r)) > MAX_RESIDUAL:
-        worst, miss, model_value = _blame(tests, mass, radius, r)
+        worst, miss, model_value = _blame(tests, mass, radius, r, fixed)
         raise FitError(f"the viscoelastic law fitted to the other tests misses this one by "
                        f"{miss:+.1f} standard uncertainties (model "
                        f"{_show(tests[worst], model_value)} against "
                        f"{_show(tests[worst], value[worst])}): the tests are not of one ball, or "
                        "an uncertainty is too small", worst)
     # parameter uncertainties, in SI (through the transforms)
-    su = np.sqrt(np.diag(cov))
+    _, free = _split(fixed)
+    su = np.zeros(len(PARAMETERS))
+    su[free] = np.sqrt(np.diag(cov))  # a held parameter: no uncertainty from the fit
     rf = law.relaxed_fraction
     uncertainty = {"stiffness": law.stiffness * su[0], "exponent": su[1],
                    "relaxed_fraction": rf * (1 - rf) * su[2],
                    "relaxation_time": law.relaxation_time * su[3]}
     # a lot whose every COR test is one standard uncertainty higher: those residuals fall by 1
     dr = np.array([-1.0 if t.kind in ("cor", "cylinder_cor") else 0.0 for t in tests])
-    direction = tuple(float(x) for x in -np.linalg.solve(jtj, jm.T @ dr))
+    step = np.zeros(len(PARAMETERS))
+    step[free] = -np.linalg.solve(jtj, jm.T @ dr)
+    direction = tuple(float(x) for x in step)
     model = value + r * sigma
     return BallFit(law, tests, tuple(float(x) for x in model), tuple(float(x) for x in r), chi2,
-                   dof, uncertainty, direction)
+                   dof, uncertainty, direction, tuple(k for k, _ in fixed))
 
 
-def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarray
-           ) -> tuple[int, float, float]:
+def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarray,
+           fixed: Fixed = ()) -> tuple[int, float, float]:
     """The test at fault in a refused fit, ``(index, miss, model value)``: the one without
     which the others fit best (the smallest chi-square of the fit to the rest), its miss being
     how far that fit is from it, in its standard uncertainties. Where the rest fit equally well
@@ -315,12 +348,14 @@ def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarra
     for i, test in enumerate(tests):
         rest = tests[:i] + tests[i + 1:]
         kinds = {t.kind for t in rest}
-        if (len(rest) < len(PARAMETERS) or not kinds & {"cor", "cylinder_cor"}
+        if (len(rest) < len(PARAMETERS) - len(fixed) or not kinds & {"cor", "cylinder_cor"}
                 or not kinds & set(STIFFNESS_KINDS)):
             continue
         try:
-            theta, r_rest, jm = _solve(rest, mass, radius)
-            cov = np.linalg.inv(jm.T @ jm)
+            theta, r_rest, jm = _solve(rest, mass, radius, fixed)
+            cov = np.zeros((len(PARAMETERS), len(PARAMETERS)))
+            free = _split(fixed)[1]
+            cov[np.ix_(free, free)] = np.linalg.inv(jm.T @ jm)
         except (FitError, np.linalg.LinAlgError):
             continue
         steps = 1e-3 * np.eye(len(PARAMETERS))
@@ -334,37 +369,6 @@ def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarra
             score = rest_chi2 - 1e-6 * studentised**2
             best = (i, (values[0] - test.value) / test.uncertainty, values[0])
     return best
-
-
-def cached_fit(tests: tuple[BallTest, ...], mass: float, radius: float) -> BallFit:
-    """:func:`fit_ball`, kept by the active workspace (kind ``ball-fit``, also in its disk
-    store where one is attached): a fit takes about a second, a ball file is read by every
-    run."""
-    tests = tuple(tests)
-    return workspace.current().call("ball-fit", _fit, tests, float(mass), float(radius),
-                                    save=_fit_arrays, load=lambda a: _fit_from(a, tests))
-
-
-def _fit(tests: tuple[BallTest, ...], mass: float, radius: float) -> BallFit:
-    return fit_ball(tests, mass, radius)
-
-
-def _fit_arrays(f: BallFit) -> dict:
-    return {"law": np.array([getattr(f.law, p) for p in PARAMETERS]), "model": np.array(f.model),
-            "residuals": np.array(f.residuals), "chi2": np.array([f.chi2, f.dof]),
-            "uncertainty": np.array([f.uncertainty[p] for p in PARAMETERS]),
-            "direction": np.array(f.lot_direction)}
-
-
-def _fit_from(a: dict | None, tests: tuple[BallTest, ...]) -> BallFit | None:
-    if a is None or len(a.get("model", ())) != len(tests) or "law" not in a:
-        return None
-    law = Viscoelastic(*(float(x) for x in a["law"]))
-    return BallFit(law, tests, tuple(float(x) for x in a["model"]),
-                   tuple(float(x) for x in a["residuals"]), float(a["chi2"][0]),
-                   int(a["chi2"][1]), dict(zip(PARAMETERS, (float(x) for x in a["uncertainty"]),
-                                               strict=True)),
-                   tuple(float(x) for x in a["direction"]))
 
 
 def _logit(p: float) -> float:

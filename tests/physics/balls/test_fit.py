@@ -17,9 +17,10 @@ import pytest
 from dict_store import forget, installed
 
 from batcert import workspace
-from batcert.physics.balls import Viscoelastic
+from batcert.physics.balls import Viscoelastic, fit_kept
 from batcert.physics.balls import fit as fit_module
-from batcert.physics.balls.fit import PARAMETERS, BallTest, FitError, cached_fit, fit_ball, predict
+from batcert.physics.balls.fit import PARAMETERS, BallTest, FitError, fit_ball, predict
+from batcert.physics.balls.fit_kept import cached_fit
 from batcert.specs.ball import ball_tests, load_ball
 
 REPO = Path(__file__).resolve().parents[3]
@@ -250,7 +251,7 @@ def stored_and_computed(monkeypatch):
         assert store.saves == 1
         forget("ball-fit")
         with monkeypatch.context() as m:
-            m.setattr(fit_module, "fit_ball", lambda *a: pytest.fail("fitted again"))
+            m.setattr(fit_kept, "fit_ball", lambda *a: pytest.fail("fitted again"))
             read = cached_fit(tests, MASS, RADIUS)
         assert store.loads == 2
     return read, computed
@@ -276,7 +277,7 @@ def test_stored_fit_is_the_computed_one_exactly(own_fits, monkeypatch):
                                   len(tests) - 4, dict.fromkeys(PARAMETERS, 1.0))
         with installed("ball-fit"):
             with monkeypatch.context() as m:
-                m.setattr(fit_module, "fit_ball", lambda *a, made=made: made)
+                m.setattr(fit_kept, "fit_ball", lambda *a, made=made: made)
                 assert cached_fit(tests, MASS, RADIUS) is made
             forget("ball-fit")
             read.append(cached_fit(tests, MASS, RADIUS).law)

@@ -128,6 +128,12 @@ def _max_drop(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleResult:
                       note=f"length {f.length / INCH:.2f} in, weight {f.mass / OUNCE:.2f} oz")
 
 
+def _max_mass(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleResult:
+    verdict, margin = _at_most(f.mass, rule.limit)
+    return RuleResult(rule.id, "", rule.kind, f.mass, rule.limit, verdict, "kg", margin=margin,
+                      note=f"weight {f.mass / OUNCE:.2f} oz")
+
+
 def _max_barrel(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleResult:
     verdict, margin = _at_most(f.barrel_diameter, rule.limit)
     return RuleResult(rule.id, "", rule.kind, f.barrel_diameter, rule.limit, verdict,
@@ -196,6 +202,7 @@ def _min_compression(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> Rule
 EVALUATIONS: dict[str, Callable[[RuleSpec, BatFacts, RunResult | None], RuleResult] | None] = {
     "max-length": _max_length,
     "max-drop": _max_drop,
+    "max-mass": _max_mass,
     "max-barrel-diameter": _max_barrel,
     "min-diameter": _min_diameter,
     "construction": _construction,

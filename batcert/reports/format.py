@@ -223,6 +223,10 @@ def rule_value(value: Any, unit: str) -> Display | str:
         return show(value, "speed", 2)
     if unit == "in - oz":
         return Display(f"{value:.2f}", None)
+    if unit == "kg":
+        return show(value, "mass", 3)
+    if unit == "N":
+        return show(value, "force", 0)
     return Display(f"{value:.4f}", None)
 
 
@@ -247,6 +251,11 @@ def rule_margin(margin: float | None, unit: str) -> Display | str:
         if abs(margin) < 0.005:  # at the limit, or within the 0.01 m/s shown
             return Display(margin_text(margin, 2, "m/s"), None)
         s = show(abs(margin), "speed", 2)
+        sign = MINUS if margin < 0 else "+"
+        return Display(sign + s.si, (sign + s.us) if s.us else None)
+    if unit in ("kg", "N"):
+        dim, digits = ("mass", 3) if unit == "kg" else ("force", 0)
+        s = show(abs(margin), dim, digits)
         sign = MINUS if margin < 0 else "+"
         return Display(sign + s.si, (sign + s.us) if s.us else None)
     return Display(margin_text(margin, 2 if unit == "in - oz" else 4), None)

@@ -20,7 +20,7 @@ class RuleResult:
     value: Any  # measured value (SI for lengths; drop as a plain number) or None
     limit: Any  # the rule's limit (SI), required construction, allowed materials, or text
     verdict: str  # pass | fail | not-applicable | not-modelled
-    unit: str = ""  # unit of value and limit: m, in - oz, or "" (dimensionless / text)
+    unit: str = ""  # unit of value and limit: m, kg, N, m/s, in - oz, or "" (dimensionless / text)
     tolerance: float = 0.0
     margin: float | None = None  # limit (+ tolerance) - value, positive passes
     protocol: str | None = None

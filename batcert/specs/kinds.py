@@ -65,6 +65,8 @@ RULE_KINDS: dict[str, RuleKind] = {k.name: k for k in (
     RuleKind("max-length", "overall length at most `limit`", "length", unit="m"),
     RuleKind("max-drop", "drop = length [in] - weight [oz] at most `limit` (a plain number; "
              "BBCOR's -3 rule is `limit: 3`)", "number", unit="in - oz"),
+    RuleKind("max-mass", "weight (the reconciled model's mass: the measured mass when the bat "
+             "file gives one) at most `limit`", "mass", unit="kg"),
     RuleKind("max-barrel-diameter", "largest outer diameter at most `limit`", "length", unit="m"),
     RuleKind("min-diameter", "smallest outer diameter (the handle) at least `limit`", "length", unit="m"),
     RuleKind("construction", "construction must be `required` (solid or hollow)", None, ("required",)),

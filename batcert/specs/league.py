@@ -46,6 +46,7 @@ LIMIT_KINDS: dict[str, Kind] = {
     "length": quantity("length", positive=True),
     "number": number(),
     "force": quantity("force", positive=True),
+    "mass": quantity("mass", positive=True),
     "metric": one_of(number(minimum=-METRIC_BOUND, maximum=METRIC_BOUND),
                      quantity("speed", minimum=0.0), describe="a number, or a speed for an "
                      "exit-speed protocol"),

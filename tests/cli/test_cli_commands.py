@@ -14,7 +14,8 @@ from jsonout import results
 
 REPO = Path(__file__).resolve().parents[2]
 ASH = REPO / "bats" / "ash-34.yaml"
-SHIPPED = ["astm-bpf", "ncaa-bbcor", "ncaa-besr", "proposed", "stationary-ball"]
+SHIPPED = ["astm-bpf", "ncaa-bbcor", "ncaa-besr", "proposed", "softball-bpf", "stationary-ball",
+           "usa-softball-2004"]
 CONDITION_KEYS = {"name", "pitch_speed", "bat_angular_speed", "impact_location", "exit_speed",
                   "bat_angular_speed_after", "cor", "bpf", "besr", "bbcor",
                   "collision_efficiency", "sweep"}
@@ -54,7 +55,8 @@ def test_protocols_lists_shipped(batcert_cli):
     assert sorted(p["id"] for p in data) == SHIPPED
     limits = {p["id"]: p["limit"] for p in data}
     assert limits == {"astm-bpf": 1.15, "ncaa-bbcor": 0.5, "ncaa-besr": 0.728, "proposed": None,
-                      "stationary-ball": None}
+                      "softball-bpf": 1.2, "stationary-ball": None,
+                      "usa-softball-2004": pytest.approx(98 * 0.44704, rel=1e-12)}
 
 
 def test_inspect_ash_json(batcert_cli):

@@ -137,7 +137,9 @@ CASES: dict[str, list[Expect]] = {
     ],
     "protocol-unknown-ball.yaml": [
         Expect(6, "ball", "unknown ball 'colegiate-baseball' (shipped: collegiate-baseball, "
-                          "nathan-2000); did you mean 'collegiate-baseball'?"),
+                          "nathan-2000, softball-fastpitch-47-375, softball-ncaa-47-350, "
+                          "softball-slowpitch-44-375, softball-slowpitch-52-300); did you mean "
+                          "'collegiate-baseball'?"),
     ],
     "protocol-limit-without-unit.yaml": [
         Expect(16, "limit.max", "the exit-speed limit is a speed: give its unit, e.g. '97 mph', "

@@ -20,7 +20,8 @@ IN = 0.0254  # [m], REFERENCE-DATA Units
 MPH = 0.44704  # [m/s]
 OZ = 0.028349523125  # [kg]
 
-SHIPPED_PROTOCOLS = {"astm-bpf", "ncaa-bbcor", "ncaa-besr", "proposed", "stationary-ball"}
+SHIPPED_PROTOCOLS = {"astm-bpf", "ncaa-bbcor", "ncaa-besr", "proposed", "softball-bpf",
+                     "stationary-ball", "usa-softball-2004"}
 
 
 def test_shipped_names_resolve():

@@ -17,6 +17,9 @@ OZ = 0.028349523125
     ("usa-softball", {"length", "weight", "barrel", "bbs"}, {"approved-list"}),
     ("usssa-slowpitch", {"length", "barrel", "bpf"}, {"weight", "compression"}),
     ("ncaa-softball", {"length", "weight", "barrel", "bbs"}, {"compression"}),
+    ("nsa", {"length", "weight", "barrel", "bpf"}, set()),
+    ("little-league-softball", {"barrel", "bpf"}, {"length-by-division"}),
+    ("wbsc", {"length", "weight", "barrel"}, {"performance"}),
 ])
 def test_every_rule_a_model_can_evaluate_is_evaluated(league, modelled, not_modelled):
     result = run_league(league, ["fastpitch-alloy-33"], engine="rigid")

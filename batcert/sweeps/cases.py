@@ -34,6 +34,7 @@ class Parameter:
     apply: Callable[[Case, BuiltBat, float], Case]  # the case with the value [SI]
     bounds: tuple[float, float]  # accepted values [SI] (the bat file's field ranges)
     tolerance: float  # default tolerance of `batcert design` [SI]
+    unit: str = ""  # the unit of a plain number (``dimension`` None) as shown, e.g. "deg"
 
 
 class ParameterError(UsageProblem):

@@ -167,7 +167,9 @@ def variant_name(plan: Plan, index: int) -> str:
     """A variant by its values, as on the command line: ``pitch_speed=55 m/s, wall=0.0027 m``
     (SI)."""
     return ", ".join(f"{a.name}={v:.6g}" + (f" {si_unit(a.parameter.dimension)}"
-                                             if a.parameter.dimension else "")
+                                             if a.parameter.dimension
+                                             else f" {a.parameter.unit}" if a.parameter.unit
+                                             else "")
                      for a, v in zip(plan.axes, plan.points[index], strict=True))
 
 
@@ -238,7 +240,8 @@ def collect(plan: Plan, rows: list[Row], nominal: NominalRun | None) -> SweepRes
         warnings.insert(0, f"{failed} of {len(ordered)} variants have no result (see errors)")
     settings: dict[str, Any] = next((r["settings"] for r in ordered if r["error"] is None), {})
     axes = [SweepAxis(a.name, a.parameter.dimension,
-                      si_unit(a.parameter.dimension) if a.parameter.dimension else "-",
+                      si_unit(a.parameter.dimension) if a.parameter.dimension
+                      else a.parameter.unit or "-",
                       a.parameter.changes, a.parameter.doc, a.nominal, list(a.values),
                       a.percent, a.parameter.label) for a in plan.axes]
     bat = plan.base.bat

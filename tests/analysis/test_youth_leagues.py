@@ -1,4 +1,5 @@
-"""The Little League Intermediate/Junior and Senior league files on the shipped BBCOR alloy bat
+"""The youth league files (Little League Intermediate/Junior and Senior, Babe Ruth 16-18, PONY)
+on the shipped BBCOR alloy bat
 (34 in, 2 5/8 in): the size rules follow from the bat file; the either-or performance rule is
 not modelled, the BBCOR-only one runs ncaa-bbcor (rigid engine: the number is not what is
 tested)."""
@@ -14,6 +15,8 @@ from batcert.commands.league import run_league
     ("little-league-intermediate", {"length": "pass", "diameter": "pass",
                                     "performance": "not-modelled"}),
     ("little-league-senior", {"diameter": "pass", "bbcor": None}),
+    ("babe-ruth-16-18", {"length": "pass", "diameter": "pass", "drop": "pass", "bbcor": None}),
+    ("pony", {"diameter": "pass", "performance": "not-modelled"}),
 ])
 def test_every_rule_is_evaluated_or_said_not_to_be(league, verdicts):
     result = run_league(league, ["bbcor-alloy-34"], engine="rigid")

@@ -53,7 +53,7 @@ def layup_summary(built: BuiltBat) -> list[dict]:
         law = stack.law(built.model.wall_damage)
         out.append({
             "start": start, "end": end, "thickness": stack.thickness,
-            "areal_density": sum(lam.areal_density for lam in stack.laminates()),
+            "areal_density": stack.areal_density,
             "walls": [[{"material": layer.ply.name, "angle_deg": float(np.degrees(layer.angle)),
                         "balanced": layer.balanced, "thickness": layer.thickness}
                        for layer in wall] for wall in stack.walls],

@@ -63,7 +63,6 @@ def _ring(m, i: int) -> float:
         return float(shell.ring_frequency(
             0.5 * (outer - wall), wall, m.material.youngs_modulus * m.barrel_stiffness_scale,
             m.material.density * m.barrel_mass_scale, m.material.poisson_ratio))
-    areal = sum(lam.areal_density for lam in stack.laminates())
     return float(shell.ring_frequency_of(0.5 * (outer - wall),
                                          stack.law(m.wall_damage)[4, 4] * m.barrel_stiffness_scale,
-                                         areal * m.barrel_mass_scale))
+                                         stack.areal_density * m.barrel_mass_scale))

@@ -37,7 +37,7 @@ def stack_section(stack: WallStack, outer_diameter, damage: float = 0.0) -> dict
     out = {k: np.zeros_like(outer) for k in keys}
     d_out = outer.copy()
     a_total = np.zeros((3, 3))
-    for wall, lam in reversed(list(zip(stack.walls, stack.laminates(damage), strict=True))):
+    for lam in reversed(stack.laminates(damage)):  # from the outermost wall inward
         d_in = d_out - 2 * lam.thickness
         area, second = section_properties(d_out, d_in)
         compliance = np.linalg.inv(lam.a)
@@ -51,7 +51,6 @@ def stack_section(stack: WallStack, outer_diameter, damage: float = 0.0) -> dict
             out[key] += value
         a_total += lam.a
         d_out = d_in
-        del wall
     a_inv = np.linalg.inv(a_total)
     out["poisson_ratio"] = np.full_like(outer, -a_inv[0, 1] / a_inv[0, 0])
     return out
@@ -62,13 +61,12 @@ def stack_material(stack: WallStack) -> Material:
     modulus, shear modulus, Poisson's ratio and mean density (:func:`stack_section` of a thin
     wall), and the thickness-weighted mean of its plies' loss factors; named after its plies.
     The engines read it for the beam's damping only (the walls come from the layup)."""
-    a = sum(lam.a for lam in stack.laminates())
-    inv = np.linalg.inv(a)
+    inv = np.linalg.inv(stack.law()[:3, :3])
     t = stack.thickness
     layers = [layer for wall in stack.walls for layer in wall]
     names = list(dict.fromkeys(layer.ply.name for layer in layers))
     eta = sum(layer.ply.loss_factor * layer.thickness for layer in layers) / t
-    rho = sum(layer.ply.density * layer.thickness for layer in layers) / t
+    rho = stack.areal_density / t
     return Material(" + ".join(names) + " layup", rho, 1.0 / (inv[0, 0] * t),
                     1.0 / (inv[2, 2] * t), float(-inv[0, 1] / inv[0, 0]), float(eta))
 

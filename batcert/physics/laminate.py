@@ -131,13 +131,31 @@ class Laminate:
     thickness: float  # [m]
     areal_density: float  # mass per unit area [kg/m^2]
 
-    def couples_shear(self, rtol: float = 1e-9) -> bool:
-        """Whether stretching or bending couples with shear or twist (``A16``, ``A26``,
-        ``B16``, ``B26``, ``D16``, ``D26`` not zero against ``A11``, ``A11 h``, ``D11``): then
-        a shell harmonic's cos and sin parts no longer separate."""
-        scale = (self.a[0, 0], self.a[0, 0] * self.thickness, self.d[0, 0])
-        return any(abs(m[i, 2]) > rtol * s for m, s in zip((self.a, self.b, self.d), scale,
-                                                          strict=True) for i in (0, 1))
+    def law(self) -> np.ndarray:
+        """``[[A, B], [B, D]]`` (6, 6) [N/m, N, N m], the shell's wall law."""
+        return np.block([[self.a, self.b], [self.b.T, self.d]])
+
+    def couples_shear(self) -> bool:
+        """Whether stretching or bending couples with shear or twist (:func:`shear_coupled`)."""
+        return bool(shear_coupled(self.law()))
+
+
+# the entries of a wall law that pair a strain of cos(n theta) with one of sin(n theta): A16,
+# A26, B16, B26, D16, D26 and their mirror images
+SHEAR_COUPLING = tuple((i, j) for i in (0, 1, 3, 4) for j in (2, 5))
+
+
+def shear_coupled(law: np.ndarray, rtol: float = 1e-9) -> np.ndarray:
+    """Whether each wall law ``[[A, B], [B, D]]`` (..., 6, 6) couples stretching or bending with
+    shear or twist: an entry of :data:`SHEAR_COUPLING` above ``rtol`` times the geometric mean
+    of its row's and column's diagonal entries. Then a shell harmonic's cos and sin parts no
+    longer separate."""
+    law = np.asarray(law, dtype=float)
+    scale = np.sqrt(np.abs(np.diagonal(law, axis1=-2, axis2=-1)))  # (..., 6)
+    out = np.zeros(law.shape[:-2], dtype=bool)
+    for i, j in SHEAR_COUPLING:
+        out |= np.abs(law[..., i, j]) > rtol * scale[..., i] * scale[..., j]
+    return out
 
 
 def laminate(layers: list[Layer] | tuple[Layer, ...], damage: float = 0.0) -> Laminate:
@@ -175,6 +193,12 @@ class WallStack:
         """All walls together [m]."""
         return float(sum(layer.thickness for wall in self.walls for layer in wall))
 
+    @property
+    def areal_density(self) -> float:
+        """All walls' mass per unit area [kg/m^2]."""
+        return float(sum(layer.ply.density * layer.thickness for wall in self.walls
+                         for layer in wall))
+
     def laminates(self, damage: float = 0.0) -> list[Laminate]:
         """Each wall's laminate about its own mid-surface, innermost first."""
         return [laminate(wall, damage) for wall in self.walls]
@@ -182,13 +206,7 @@ class WallStack:
     def law(self, damage: float = 0.0) -> np.ndarray:
         """The stack's ``[[A, B], [B, D]]`` (6, 6) [N/m, N, N m]: the sum of its walls'
         (module notes)."""
-        out = np.zeros((6, 6))
-        for lam in self.laminates(damage):
-            out[:3, :3] += lam.a
-            out[:3, 3:] += lam.b
-            out[3:, :3] += lam.b.T
-            out[3:, 3:] += lam.d
-        return out
+        return sum((lam.law() for lam in self.laminates(damage)), np.zeros((6, 6)))
 
     @property
     def breaks_in(self) -> bool:

@@ -227,9 +227,4 @@ def _covers(spans, length: float) -> bool:
     return reach >= length * (1 - 1e-9)
 
 
-def covers_bat(layup: list[dict] | None, length: float) -> bool:
-    """Whether the ``layup`` spans leave no part of the bat to ``wall`` and ``material``."""
-    return layup is not None and _covers(spans_of(layup, length), length)
-
-
-__all__ = ["LAYUP_KIND", "check_layup", "covers_bat", "spans_of"]
+__all__ = ["LAYUP_KIND", "check_layup", "spans_of"]

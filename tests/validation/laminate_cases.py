@@ -45,7 +45,7 @@ class LaminatedTube:
     def shell(self, ends: tuple[str, str], elements: int = 120) -> ShellOfRevolution:
         z = np.linspace(0.0, self.length, elements + 1)
         ones = np.ones(elements)
-        rho = self.stack.laminates()[0].areal_density / self.wall
+        rho = self.stack.areal_density / self.wall
         law = np.repeat(self.stack.law()[None], elements, axis=0)
         return ShellOfRevolution(z, np.full(z.size, self.mean_radius), self.wall * ones,
                                  rho * ones, ones, 0.3, ends, law)

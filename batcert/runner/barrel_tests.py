@@ -47,7 +47,7 @@ class Emulated:
 
     record: BreakInResult
     model: BatModel
-    test: CompressionTestSpec  # the compression test the break-in read
+    compression: CompressionResult  # the compression test on ``model``
 
 
 def emulate(model: BatModel, test: CompressionTestSpec, rule: BreakInSpec) -> Emulated:
@@ -55,12 +55,13 @@ def emulate(model: BatModel, test: CompressionTestSpec, rule: BreakInSpec) -> Em
     is not rolled, and its record says so."""
     if model.wall_damage != 0.0:
         raise ValueError("the break-in is emulated on a new bat")
-    initial = compression(model, test).force
+    new = compression(model, test)
+    initial = new.force
     steps = [BreakInStep(0, 0.0, initial, 0.0)]
     if not breaks_in(model, model.length - test.position):
         return Emulated(_record(rule, False, "the barrel's wall under the platens has no ply "
                                 "that breaks in (not a composite barrel): the ABI does not "
-                                "apply", steps, False), model, test)
+                                "apply", steps, False), model, new)
     # a model is of a new bat, whose compression has not fallen: the skip rule acts on measured
     # histories (measured_history)
     for n in range(1, rule.max_passes + 1):
@@ -68,12 +69,13 @@ def emulate(model: BatModel, test: CompressionTestSpec, rule: BreakInSpec) -> Em
         if damage >= 1.0:
             break
         rolled = broken_in_model(model, damage)
-        force = compression(rolled, test).force
-        steps.append(BreakInStep(n, damage, force, 1.0 - force / initial))
-        if force <= (1.0 - rule.target_drop) * initial:
+        after = compression(rolled, test)
+        steps.append(BreakInStep(n, damage, after.force, 1.0 - after.force / initial))
+        if after.force <= (1.0 - rule.target_drop) * initial:
             return Emulated(_record(rule, True, f"rolled {n} passes until the compression "
                                     f"fell {100 * steps[-1].drop:.2f} % (target "
-                                    f"{100 * rule.target_drop:g} %)", steps, False), rolled, test)
+                                    f"{100 * rule.target_drop:g} %)", steps, False), rolled,
+                            after)
     raise ValueError(f"the emulated break-in did not lower the barrel's compression by "
                      f"{100 * rule.target_drop:g} % within {len(steps) - 1} passes (last "
                      f"{100 * steps[-1].drop:.2f} %): its plies' matrix moduli carry too little "

@@ -185,14 +185,15 @@ def protocol_steps(built: BuiltBat, protocol: ProtocolSpec, ball: BallSpec, engi
     p = protocol
     check_applicable(p, built)
     test = p.barrel_compression if built.model.construction == "hollow" else None
-    emulated = None
+    emulated = compression = None
     if test is not None and p.break_in is not None:
         emulated = _checked(p, abi.emulate, built.model, test, p.break_in)
-    compression = None if test is None else _checked(p, abi.compression, built.model, test)
+        compression = emulated.compression  # of the bat the impacts below are run on
+    elif test is not None:
+        compression = _checked(p, abi.compression, built.model, test)
     if emulated is not None and emulated.model is not built.model:
         before = yield from _impact_steps(built, p, ball, engine, created)
         built = replace(built, model=emulated.model)
-        compression = abi.compression(built.model, emulated.test)
     result = yield from _impact_steps(built, p, ball, engine, created)
     result.compression = compression
     if emulated is not None:

@@ -86,23 +86,24 @@ def compression_stiffness(bat: BatModel, position: float, platen_width: float) -
     w = np.full(k_pts, 1.0 / k_pts)
     assembler = Assembler(shell)
 
-    def load(n: int, system) -> np.ndarray:  # the platen's unit load, on the free dofs
+    def load(n: int, free: np.ndarray) -> np.ndarray:  # the platen's unit load, free dofs
         cols, h = normal_reader(shell, n, zs)
-        f = np.zeros(system.node_dofs * shell.z.size)
+        f = np.zeros(shell.node_dofs(n) * shell.z.size)
         np.add.at(f, cols.ravel(), (h * w[:, None]).ravel())
-        return f[system.free]
+        return f[free]
 
-    # the even orders n >= 2 (banded: each node couples only to its neighbours)
+    # the even orders n >= 2 (banded: each node couples only to its neighbours); they share
+    # their layout and free dofs, so one load serves them all
     orders = list(range(2, STATIC_ORDERS + 1, 2))
-    bands, _ = assembler.stiffness_bands(orders)
+    bands, free = assembler.stiffness_bands(orders)
+    f = load(2, free)
     approach = 0.0
-    for n, ab in zip(orders, bands, strict=True):
-        f = load(n, assembler.system(n))
+    for ab in bands:
         factor = scipy.linalg.cholesky_banded(ab, lower=True, check_finite=False)
         x = scipy.linalg.cho_solve_banded((factor, True), f, check_finite=False)
         approach += 4.0 * float(f @ x)  # both loads; both platens
     system = assembler.system(0, support=True)  # order 0, with inertia relief
-    f0 = load(0, system)
+    f0 = load(0, system.free)
     factor = scipy.linalg.cholesky_banded(lower_band(system.stiffness, 2 * system.node_dofs - 1),
                                           lower=True, check_finite=False)
     x0 = static_solve(system, lambda b: scipy.linalg.cho_solve_banded(

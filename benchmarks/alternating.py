@@ -1,0 +1,33 @@
+"""Wall times of short Python programs, each a fresh process, run in turns and compared with
+``python -c "import numpy"`` (the benchmarks' yardstick): the measuring loop of
+bench_exit.py and bench_laminate.py."""
+
+from __future__ import annotations
+
+import statistics
+import subprocess
+import sys
+import time
+
+BASELINE = "numpy import (baseline)"
+
+
+def median_times(cases: dict[str, str], repeat: int) -> dict[str, float]:
+    """The median wall time [s] of ``python -c CODE`` for each named case, the baseline
+    (``import numpy``) added; the cases run in turns, so that a drifting machine loads all
+    alike."""
+    programs = {BASELINE: "import numpy", **cases}
+    times: dict[str, list[float]] = {k: [] for k in programs}
+    for _ in range(repeat):
+        for name, code in programs.items():
+            t = time.perf_counter()
+            subprocess.run([sys.executable, "-c", code], check=True)
+            times[name].append(time.perf_counter() - t)
+    return {name: statistics.median(ts) for name, ts in times.items()}
+
+
+def print_ratios(medians: dict[str, float], width: int = 26) -> None:
+    """Each case's median and its ratio to the baseline's."""
+    base = medians[BASELINE]
+    for name, med in medians.items():
+        print(f"{name:{width}s} {med * 1e3:7.0f} ms  x{med / base:5.2f} numpy import")

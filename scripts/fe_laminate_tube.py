@@ -63,7 +63,7 @@ from pathlib import Path
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import BilinearForm, CellBasis, ElementHex2, ElementVector, MeshHex, MeshHex2, asm
+from skfem import BilinearForm, CellBasis, ElementHex2, ElementVector, asm
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import fe_tube_reference as ref  # noqa: E402
@@ -85,7 +85,6 @@ from fe_tube_reference import (  # noqa: E402
     log,
     mode_type,
     modes_class,
-    pick,
     squeeze_outputs,
 )
 
@@ -205,8 +204,7 @@ class LamTube(ref.Tube):
     layers per ply; theta in th_pts, z in z_pts.  Everything but the construction (boundary
     conditions, solvers, load patches, polar components) is fe_tube_reference.Tube's.
 
-    The mesh part of Tube.__init__ is repeated here (it cannot be called without assembling
-    the isotropic matrices); only the radial grid differs: one linspace per ply."""
+    The mesh is Tube.mesh_on's with one radial linspace per ply; only the assembly differs."""
 
     def __init__(self, plies, th_pts, z_pts, nr, periodic=False, chunk=1000):
         t0 = time.time()
@@ -217,34 +215,7 @@ class LamTube(ref.Tube):
         self.r_interfaces = r_if
         r_pts = np.concatenate([r_if[:1]] + [np.linspace(a, b, nr + 1)[1:]
                                              for a, b in zip(r_if[:-1], r_if[1:], strict=True)])
-        m1 = MeshHex.init_tensor(r_pts, th_pts, z_pts)
-        m2 = MeshHex2.from_mesh(m1)
-        P = m2.doflocs                              # (r, theta, z) of all 27-node dofs
-        X = np.vstack([P[0] * np.cos(P[1]), P[0] * np.sin(P[1]), P[2]])
-        self.mesh = MeshHex2(X, m2.t)                # isoparametric curved mesh
-        sb = CellBasis(self.mesh, ElementHex2(), intorder=5)
-        self.sb = sb
-        assert np.allclose(sb.doflocs, X)
-        ed = sb.element_dofs.copy()
-        nn = sb.N
-        r, th, z = P[0].copy(), P[1].copy(), P[2].copy()
-        if periodic:  # merge theta = 2 pi nodes into theta = 0 nodes
-            dup = np.isclose(th, 2 * np.pi)
-            base = np.isclose(th, 0.0)
-            lut = {(round(r[i] * 1e9), round(z[i] * 1e9)): i for i in np.nonzero(base)[0]}
-            mp = np.arange(nn)
-            for i in np.nonzero(dup)[0]:
-                mp[i] = lut[(round(r[i] * 1e9), round(z[i] * 1e9))]
-            keep = np.nonzero(~dup)[0]
-            newidx = -np.ones(nn, int)
-            newidx[keep] = np.arange(keep.size)
-            ed = newidx[mp[ed]]
-            r, th, z = r[keep], th[keep], z[keep]
-            nn = keep.size
-            self.keep = keep
-        self.r, self.th, self.z = r, th, z
-        self.nn = nn
-        self.N = 3 * nn
+        m1, sb, ed = self.mesh_on(r_pts, th_pts, z_pts, periodic)
         # ply of each element, from the mean radius of its vertices
         rc = m1.p[0, m1.t].mean(axis=0)
         self.ply = np.clip(np.searchsorted(r_if, rc) - 1, 0, len(plies) - 1)
@@ -365,38 +336,17 @@ def shell_ss_freqs(plies, n, m, theory='sanders'):
 # Cases A, B and D (case C is fe_tube_reference's)
 # ----------------------------------------------------------------------------
 def case_A(model, k=12):
-    """free-free: n = 2 (class SS), n = 3 (class SA); z-sym (even axial orders) and z-anti (odd).
-    fe_tube_reference.case_A also solves classes AS and AA (the sin partners of the same modes,
-    and torsion), which the picked modes do not need: left out here, it halves the run time."""
-    allm = []
-    for c in ['SS', 'SA']:
-        for zs in ['S', 'A']:
-            allm += modes_class(model, c, zs, None, k=k)
-    allm.sort(key=lambda m: m['f_Hz'])
-    res = {}
-    for n, c in [(2, 'SS'), (3, 'SA')]:
-        ms = [m for m in allm if m['class'].startswith(c)]
-        res['n%d_axial0' % n] = pick(ms, n, 0)
-        res['n%d_axial1' % n] = pick(ms, n, 1)
-    return res, allm
+    """free-free: fe_tube_reference.case_A on the classes SS and SA only: AS and AA (the sin
+    partners of the same modes, and torsion) are not needed by the picked modes, and leaving
+    them out halves the run time."""
+    return ref.case_A(model, k=k, classes=('SS', 'SA'))
 
 
 def case_B(model, k=10):
-    """shear-diaphragm ends at z = +-L/2; m odd <-> z-sym, m even <-> z-anti."""
-    allm = []
-    for c in ['SS', 'SA']:
-        for zs in ['S', 'A']:
-            allm += modes_class(model, c, zs, 'SD', k=k)
-    allm.sort(key=lambda m: m['f_Hz'])
-    res = {}
-    for n, c in [(2, 'SS'), (3, 'SA')]:
-        ms = [mm for mm in allm if mm['class'].startswith(c)]
-        for m in (1, 2):
-            res['n%d_m%d' % (n, m)] = pick(ms, n, m - 1)
-    shell = {'n%d_m%d' % (n, m): {th: float(shell_ss_freqs(model.plies, n, m, th)[0])
-                                  for th in ['sanders', 'donnell']}
-             for n in (2, 3) for m in (1, 2)}
-    return res, allm, shell
+    """shear-diaphragm ends: fe_tube_reference.case_B with the laminated wall's Sanders and
+    Donnell frequencies."""
+    return ref.case_B(model, k=k, thin_shell=lambda n, m: {
+        th: float(shell_ss_freqs(model.plies, n, m, th)[0]) for th in ['sanders', 'donnell']})
 
 
 def case_D(plies, lev):

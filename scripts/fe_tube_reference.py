@@ -193,37 +193,8 @@ class Tube:
     def __init__(self, t, th_pts, z_pts, nr, periodic=False, chunk=4000):
         t0 = time.time()
         self.t = t
-        r_pts = np.linspace(RO - t, RO, nr + 1)
-        m1 = MeshHex.init_tensor(r_pts, th_pts, z_pts)
-        m2 = MeshHex2.from_mesh(m1)
-        P = m2.doflocs                              # (r, theta, z) of all 27-node dofs
-        X = np.vstack([P[0] * np.cos(P[1]), P[0] * np.sin(P[1]), P[2]])
-        self.mesh = MeshHex2(X, m2.t)                # isoparametric curved mesh
-        sb = CellBasis(self.mesh, ElementHex2(), intorder=5)
-        self.sb = sb
-        assert np.allclose(sb.doflocs, X)
-        ed = sb.element_dofs.copy()                 # (27, nel) scalar dofs
-        nn = sb.N
-        r, th, z = P[0].copy(), P[1].copy(), P[2].copy()
-        if periodic:  # merge theta = 2 pi nodes into theta = 0 nodes
-            dup = np.isclose(th, 2 * np.pi)
-            base = np.isclose(th, 0.0)
-            def key(i):
-                return (round(r[i] * 1e9), round(z[i] * 1e9))
-            lut = {key(i): i for i in np.nonzero(base)[0]}
-            mp = np.arange(nn)
-            for i in np.nonzero(dup)[0]:
-                mp[i] = lut[key(i)]
-            keep = np.nonzero(~dup)[0]
-            newidx = -np.ones(nn, int)
-            newidx[keep] = np.arange(keep.size)
-            ed = newidx[mp[ed]]
-            r, th, z = r[keep], th[keep], z[keep]
-            nn = keep.size
-            self.keep = keep
-        self.r, self.th, self.z = r, th, z
-        self.nn = nn
-        self.N = 3 * nn
+        _, sb, ed = self.mesh_on(np.linspace(RO - t, RO, nr + 1), th_pts, z_pts, periodic)
+        nn = self.nn
         # ---- element matrices (batched), chunked over elements ----
         nb = 27
         nel = sb.nelems
@@ -260,6 +231,42 @@ class Tube:
         self.ed = ed
         self.nel = nel
         self.time_asm = time.time() - t0
+
+    def mesh_on(self, r_pts, th_pts, z_pts, periodic=False):
+        """The isoparametric 27-node mesh of the tensor grid (r_pts, th_pts, z_pts): sets
+        mesh, sb, r, th, z, nn, N (and keep, periodic); returns the linear tensor mesh, the
+        basis and the scalar element dofs."""
+        m1 = MeshHex.init_tensor(r_pts, th_pts, z_pts)
+        m2 = MeshHex2.from_mesh(m1)
+        P = m2.doflocs                              # (r, theta, z) of all 27-node dofs
+        X = np.vstack([P[0] * np.cos(P[1]), P[0] * np.sin(P[1]), P[2]])
+        self.mesh = MeshHex2(X, m2.t)                # isoparametric curved mesh
+        sb = CellBasis(self.mesh, ElementHex2(), intorder=5)
+        self.sb = sb
+        assert np.allclose(sb.doflocs, X)
+        ed = sb.element_dofs.copy()                 # (27, nel) scalar dofs
+        nn = sb.N
+        r, th, z = P[0].copy(), P[1].copy(), P[2].copy()
+        if periodic:  # merge theta = 2 pi nodes into theta = 0 nodes
+            dup = np.isclose(th, 2 * np.pi)
+            base = np.isclose(th, 0.0)
+            def key(i):
+                return (round(r[i] * 1e9), round(z[i] * 1e9))
+            lut = {key(i): i for i in np.nonzero(base)[0]}
+            mp = np.arange(nn)
+            for i in np.nonzero(dup)[0]:
+                mp[i] = lut[key(i)]
+            keep = np.nonzero(~dup)[0]
+            newidx = -np.ones(nn, int)
+            newidx[keep] = np.arange(keep.size)
+            ed = newidx[mp[ed]]
+            r, th, z = r[keep], th[keep], z[keep]
+            nn = keep.size
+            self.keep = keep
+        self.r, self.th, self.z = r, th, z
+        self.nn = nn
+        self.N = 3 * nn
+        return m1, sb, ed
 
     # ---- helpers ----
     def dofs(self, mask, comps):
@@ -601,11 +608,12 @@ def pick(modes, n, nchg):
 # ----------------------------------------------------------------------------
 # Case runners
 # ----------------------------------------------------------------------------
-def case_A(model, k=12):
+def case_A(model, k=12, classes=('SS', 'SA', 'AS', 'AA')):
     """free-free: n=2 (class SS), n=3 (class SA); z-sym (even axial orders) and
-    z-anti (odd).  AS/AA hold the degenerate sin partners and torsion (listed)."""
+    z-anti (odd).  AS/AA hold the degenerate sin partners and torsion (listed; a caller that
+    needs only the picked modes may leave them out of ``classes``)."""
     allm = []
-    for c in ['SS', 'SA', 'AS', 'AA']:
+    for c in classes:
         for zs in ['S', 'A']:
             allm += modes_class(model, c, zs, None, k=k)
     allm.sort(key=lambda m: m['f_Hz'])
@@ -619,8 +627,10 @@ def case_A(model, k=12):
     return res, allm
 
 
-def case_B(model, k=10):
-    """shear-diaphragm ends at z=+-L/2; m odd <-> z-sym, m even <-> z-anti."""
+def case_B(model, k=10, thin_shell=None):
+    """shear-diaphragm ends at z=+-L/2; m odd <-> z-sym, m even <-> z-anti.  With them the
+    thin-shell frequencies of each (n, m): ``thin_shell(n, m)`` -> {theory: Hz}, by default
+    the isotropic wall's Flugge, Sanders and Donnell values."""
     allm = []
     for c in ['SS', 'SA']:
         for zs in ['S', 'A']:
@@ -631,11 +641,11 @@ def case_B(model, k=10):
         ms = [mm for mm in allm if mm['class'].startswith(c)]
         for m in (1, 2):
             res['n%d_m%d' % (n, m)] = pick(ms, n, m - 1)
-    shell = {}
-    for n in (2, 3):
-        for m in (1, 2):
-            shell['n%d_m%d' % (n, m)] = {th: float(shell_ss_freqs(n, m, model.t, th)[0])
-                                        for th in ['flugge', 'sanders', 'donnell']}
+    if thin_shell is None:
+        def thin_shell(n, m):
+            return {th: float(shell_ss_freqs(n, m, model.t, th)[0])
+                    for th in ['flugge', 'sanders', 'donnell']}
+    shell = {'n%d_m%d' % (n, m): thin_shell(n, m) for n in (2, 3) for m in (1, 2)}
     return res, allm, shell
 
 

@@ -209,6 +209,10 @@ def flatten(data: dict[str, Any], prefix: str = "") -> Iterator[tuple[str, str]]
 # ---------------------------------------------------------------- league rules
 
 
+# a league rule's unit -> the dimension and SI digits its values and margins are shown with
+_RULE_QUANTITIES = {"m/s": ("speed", 2), "kg": ("mass", 3), "N": ("force", 0)}
+
+
 def rule_value(value: Any, unit: str) -> Display | str:
     """A league rule's value or limit (lengths in mm with inches)."""
     if value is None:
@@ -219,14 +223,10 @@ def rule_value(value: Any, unit: str) -> Display | str:
         return value
     if unit == "m":
         return Display(f"{value * 1000:.1f} mm", f"{value / INCH:.3f} in")
-    if unit == "m/s":
-        return show(value, "speed", 2)
+    if unit in _RULE_QUANTITIES:
+        return show(value, *_RULE_QUANTITIES[unit])
     if unit == "in - oz":
         return Display(f"{value:.2f}", None)
-    if unit == "kg":
-        return show(value, "mass", 3)
-    if unit == "N":
-        return show(value, "force", 0)
     return Display(f"{value:.4f}", None)
 
 
@@ -247,15 +247,10 @@ def rule_margin(margin: float | None, unit: str) -> Display | str:
     if unit == "m":
         return Display(margin_text(margin * 1000, 1, "mm"),
                        "0 in" if margin == 0 else margin_text(margin / INCH, 3, "in"))
-    if unit == "m/s":
-        if abs(margin) < 0.005:  # at the limit, or within the 0.01 m/s shown
-            return Display(margin_text(margin, 2, "m/s"), None)
-        s = show(abs(margin), "speed", 2)
-        sign = MINUS if margin < 0 else "+"
-        return Display(sign + s.si, (sign + s.us) if s.us else None)
-    if unit in ("kg", "N"):
-        dim, digits = ("mass", 3) if unit == "kg" else ("force", 0)
-        s = show(abs(margin), dim, digits)
+    if unit == "m/s" and abs(margin) < 0.005:  # at the limit, or within the 0.01 m/s shown
+        return Display(margin_text(margin, 2, "m/s"), None)
+    if unit in _RULE_QUANTITIES:
+        s = show(abs(margin), *_RULE_QUANTITIES[unit])
         sign = MINUS if margin < 0 else "+"
         return Display(sign + s.si, (sign + s.us) if s.us else None)
     return Display(margin_text(margin, 2 if unit == "in - oz" else 4), None)

@@ -101,7 +101,7 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
     barrel_fits, barrel_warnings = _barrel_fits(session, p, pin.ball, engine, c)
     margin, verdict = decide(c.value, p.limit, guard_band(decision_rule, c.expanded))
     break_in = _break_in(session, p)
-    if break_in is not None and "incomplete" in break_in.outcome:
+    if break_in is not None and not break_in.complete:
         barrel_warnings.append(f"accelerated break-in: {break_in.outcome}; the hits do not "
                                "follow a completed break-in")
     if break_in is None and p.break_in is not None and p.barrel_compression is not None \

@@ -132,6 +132,12 @@ class BreakInResult:
     verdict_before: str | None = None
     compression_before: float | None = None  # [N]
 
+    @property
+    def complete(self) -> bool:
+        """Whether the procedure was carried through: not needed (no break-in, or skipped), or
+        the last reading at least ``target_drop`` below the first."""
+        return not self.applies or self.skipped or self.steps[-1].drop >= self.target_drop
+
 
 @dataclass
 class InputUncertainty:

@@ -83,11 +83,11 @@ def emulate(model: BatModel, test: CompressionTestSpec, rule: BreakInSpec) -> Em
 
 
 def _record(rule: BreakInSpec, applies: bool, outcome: str, steps: list[BreakInStep],
-            skipped: bool) -> BreakInResult:
+            skipped: bool, measured: bool = False) -> BreakInResult:
     return BreakInResult(applies=applies, skipped=skipped, outcome=outcome,
                          steps=steps, target_drop=rule.target_drop, skip_drop=rule.skip_drop,
                          damage_per_pass=rule.damage_per_pass, source=rule.source or "",
-                         measured=False)
+                         measured=measured)
 
 
 def measured_history(forces: list[float], new_force: float | None,
@@ -102,18 +102,12 @@ def measured_history(forces: list[float], new_force: float | None,
     if new_force is not None and 1.0 - initial / new_force > rule.skip_drop:
         outcome = (f"compression already {100 * (1 - initial / new_force):.1f} % below the new "
                    "bat's: rolling skipped (skip rule)")
-        return _measured(rule, outcome, steps, True)
+        return _record(rule, True, outcome, steps, True, measured=True)
     drop = steps[-1].drop
     if drop < rule.target_drop:
         outcome = (f"the last reading is {100 * drop:.2f} % below the initial: the procedure "
                    f"needs at least {100 * rule.target_drop:g} %, so the break-in is incomplete")
     else:
         outcome = f"rolled {len(forces) - 1} passes; compression fell {100 * drop:.2f} %"
-    return _measured(rule, outcome, steps, False)
+    return _record(rule, True, outcome, steps, False, measured=True)
 
-
-def _measured(rule: BreakInSpec, outcome: str, steps: list[BreakInStep],
-              skipped: bool) -> BreakInResult:
-    out = _record(rule, True, outcome, steps, skipped)
-    out.measured = True
-    return out

@@ -38,7 +38,7 @@ def _model_metric(session, protocol, ball, engine, location: float, scale: float
     built = session.built
     model = replace(built.model, barrel_stiffness_scale=built.model.barrel_stiffness_scale * scale)
     bench = Bench(replace(built, model=model), ball, engine, protocol.pivot, protocol.support)
-    conds = conditions_from_spec(protocol.conditions[:1], model.length, protocol.pivot)
+    conds = conditions_from_spec(protocol.conditions[:1], model, protocol.pivot)
     metrics, _ = bench.solve(conds, np.array([[location]]))
     return float(METRICS[protocol.metric].value(metrics)[0, 0])
 

@@ -8,7 +8,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from batcert.physics.swing import swing_speed
+
 if TYPE_CHECKING:
+    from batcert.physics.batmodel import BatModel
     from batcert.specs.protocol import ConditionSpec
 
 
@@ -46,10 +49,13 @@ def _setup(pitch: float, moving_bat: bool) -> str:
     return "pitched-and-swung" if moving_bat else "stationary-bat"
 
 
-def conditions_from_spec(spec_conditions: Sequence[ConditionSpec], bat_length: float,
+def conditions_from_spec(spec_conditions: Sequence[ConditionSpec], bat: BatModel,
                          pivot: float) -> list[Condition]:
-    """The protocol's conditions as speeds: matched relative speeds, explicit angular speeds, or
-    a linear bat speed at a distance from the tip converted to an angular speed about the pivot."""
+    """The protocol's conditions as speeds for ``bat``: matched relative speeds, explicit angular
+    speeds, or a linear bat speed at a distance from the tip converted to an angular speed about
+    the pivot; an explicit bat speed is scaled with the bat's MOI about the pivot where the
+    condition says so (:func:`batcert.physics.swing.swing_speed`)."""
+    bat_length = bat.length
     out = []
     for c in spec_conditions:
         if c.relative_speed is not None:
@@ -67,6 +73,9 @@ def conditions_from_spec(spec_conditions: Sequence[ConditionSpec], bat_length: f
             w1 = c.bat_angular_speed
         else:  # linear bat speed given at a distance from the tip
             w1 = _given(c.bat_speed) / (bat_length - _given(c.bat_speed_from_tip) - pivot)
+        if c.bat_speed_from_moi is not None:
+            law = c.bat_speed_from_moi
+            w1 = float(swing_speed(bat.moi_about(pivot), w1, law.reference_moi, law.exponent))
         pitch = _given(c.pitch_speed)
         out.append(Condition(c.name, c.description or "", _setup(pitch, w1 > 0), pitch, w1,
                              None))

@@ -220,7 +220,7 @@ def _impact_steps(built: BuiltBat, p: ProtocolSpec, ball: BallSpec, engine: Engi
                   created: str) -> Steps:
     """The impacts of :func:`protocol_steps` on ``built`` as it is."""
     bat = built.model
-    conds = conditions_from_spec(p.conditions, bat.length, p.pivot)
+    conds = conditions_from_spec(p.conditions, bat, p.pivot)
     bench = Bench(built, ball, engine, p.pivot, p.support)
     mp = mass_properties(built, p.pivot)
     rule = IMPACT_RULES[p.impact_location.rule]

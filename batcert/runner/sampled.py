@@ -79,7 +79,7 @@ def fit_steps(bench: Bench, protocol: ProtocolSpec, nominal: RunResult) -> Steps
     stencils around the ``nominal`` run's impact points and return its :class:`Fit`."""
     p = protocol
     rule = IMPACT_RULES[p.impact_location.rule]
-    conds = conditions_from_spec(p.conditions, bench.built.model.length, p.pivot)
+    conds = conditions_from_spec(p.conditions, bench.built.model, p.pivot)
     located = np.array([c.impact_location for c in nominal.conditions])
     offsets = (np.arange(POINTS) - POINTS // 2) * SPACING
     points = located[:, None] + offsets

@@ -67,6 +67,10 @@ def _check_condition(v: dict, data: Located, errors: Collector, path: str) -> No
         if v["stationary"] is not None:
             errors.add(lookup(data, "stationary")[0], f"{path}.stationary", "only used with "
                        "relative_speed")
+        if v["bat_speed_from_moi"] is not None and v["pitch_speed"] is not None and \
+                not (v["bat_angular_speed"] or v["bat_speed"]):
+            errors.add(lookup(data, "bat_speed_from_moi")[0], f"{path}.bat_speed_from_moi",
+                       "scales the bat speed, which is zero here (a stationary bat)")
         bat_speed = v["bat_angular_speed"] if v["bat_angular_speed"] is not None \
             else v["bat_speed"]
         if v["pitch_speed"] == 0 and bat_speed == 0:
@@ -74,6 +78,9 @@ def _check_condition(v: dict, data: Located, errors: Collector, path: str) -> No
                        "the bat are both at rest and never meet: give a pitch speed or a bat "
                        "speed above zero")
         return
+    if v["bat_speed_from_moi"] is not None:
+        errors.add(lookup(data, "bat_speed_from_moi")[0], f"{path}.bat_speed_from_moi", "only "
+                   "with bat_speed or bat_angular_speed (a matched relative speed is fixed)")
     if v["stationary"] is None and v["pitch_speed"] is None:
         errors.add(data.line, f"{path}.stationary", "relative_speed needs stationary: bat|ball, or "
                    "a pitch_speed (the bat then makes up the rest)")
@@ -83,6 +90,16 @@ def _check_condition(v: dict, data: Located, errors: Collector, path: str) -> No
     if v["pitch_speed"] is not None and v["pitch_speed"] >= v["relative_speed"]:
         errors.add(lookup(data, "pitch_speed")[0], f"{path}.pitch_speed", "must be below "
                    "relative_speed (the bat must move toward the ball)")
+
+
+SWING_SCHEMA = Schema("bat speed from the MOI", (
+    Field("reference_moi", quantity("moi", positive=True), "MOI about the protocol's pivot at "
+          "which the condition's bat speed applies.", required=True),
+    Field("exponent", number(minimum=0.0, maximum=1.0), "n of the power law "
+          "v = v_ref (I / I_ref)^-n (batcert.physics.swing).", required=True),
+    Field("source", text(), "Where the law and its numbers come from (or that they are "
+          "assumed)."),
+))
 
 
 CONDITION_SCHEMA = Schema("test condition", (
@@ -99,6 +116,9 @@ CONDITION_SCHEMA = Schema("test condition", (
     Field("relative_speed", quantity("speed", positive=True), "Matched relative normal speed "
           "at the impact point (Smith 2001 proposal)."),
     Field("stationary", choice("bat", "ball"), "With relative_speed: which body is at rest."),
+    Field("bat_speed_from_moi", section(SWING_SCHEMA), "With bat_speed or bat_angular_speed: "
+          "scale that speed with the bat's MOI about the pivot, as a batter swings a heavier "
+          "bat slower (USA Softball's batted-ball speed)."),
 ), checks=(_check_condition,))
 
 
@@ -222,6 +242,16 @@ class ConditionSpec:
     bat_speed_from_tip: float | None  # [m]
     relative_speed: float | None  # matched relative normal speed [m/s]
     stationary: str | None  # bat | ball, with relative_speed
+    bat_speed_from_moi: SwingScalingSpec | None = None
+
+
+@dataclass(frozen=True)
+class SwingScalingSpec:
+    """The bat speed's dependence on the bat's MOI (:func:`batcert.physics.swing.swing_speed`)."""
+
+    reference_moi: float  # about the protocol's pivot [kg m^2]
+    exponent: float  # [-]
+    source: str | None
 
 
 @dataclass(frozen=True)
@@ -296,7 +326,9 @@ def protocol_from_values(values: dict[str, Any], source: Source,
                          origin: tuple[str | int, ...] = ()) -> ProtocolSpec:
     """A :class:`ProtocolSpec` from the validated values of :data:`PROTOCOL_SCHEMA`."""
     v = dict(values)
-    v["conditions"] = tuple(spec_from(ConditionSpec, c) for c in v["conditions"])
+    v["conditions"] = tuple(spec_from(ConditionSpec, {**c, "bat_speed_from_moi": spec_from(
+        SwingScalingSpec, c["bat_speed_from_moi"]) if c.get("bat_speed_from_moi") else None})
+        for c in v["conditions"])
     loc = dict(v["impact_location"])
     loc["window"] = tuple(loc["window"])
     v["impact_location"] = spec_from(LocationSpec, loc)

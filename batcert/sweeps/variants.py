@@ -168,7 +168,7 @@ def _speed_nominal(field: str):
         if field == "bat_angular_speed" and c.bat_angular_speed is None:
             from batcert.runner.conditions import conditions_from_spec
             p = case.protocol
-            return float(conditions_from_spec([c], built.model.length, p.pivot)[0]
+            return float(conditions_from_spec([c], built.model, p.pivot)[0]
                          .bat_angular_speed or 0.0)
         return float(getattr(c, field))
     return nominal

@@ -19,7 +19,10 @@ OZ = 0.028349523125
     ("ncaa-softball", {"length", "weight", "barrel", "bbs"}, {"compression"}),
     ("nsa", {"length", "weight", "barrel", "bpf"}, set()),
     ("little-league-softball", {"barrel", "bpf"}, {"length-by-division"}),
-    ("wbsc", {"length", "weight", "barrel"}, {"performance"}),
+    ("wbsc", {"length", "weight", "barrel", "performance"}, set()),
+    ("usa-softball-slowpitch", {"length", "weight", "barrel", "bbs"}, {"approved-list"}),
+    ("nfhs-softball", {"length", "weight", "barrel", "bbs"}, {"non-approved-list"}),
+    ("isa", {"length", "weight", "barrel", "bpf"}, set()),
 ])
 def test_every_rule_a_model_can_evaluate_is_evaluated(league, modelled, not_modelled):
     result = run_league(league, ["fastpitch-alloy-33"], engine="rigid")
@@ -32,6 +35,20 @@ def test_every_rule_a_model_can_evaluate_is_evaluated(league, modelled, not_mode
         assert rules["weight"].value == pytest.approx(23 * OZ, rel=1e-9)
         assert rules["weight"].margin == pytest.approx(15 * OZ, rel=1e-9)
     assert rules["barrel"].margin == 0.0  # at the 2 1/4 in limit exactly
+
+
+@pytest.mark.parametrize("league, protocol", [
+    ("usa-softball", "usa-softball-2004"), ("usa-softball-slowpitch", "usa-softball-2013-slowpitch"),
+    ("ncaa-softball", "ncaa-softball-bbs"), ("wbsc", "wbsc-bbs"), ("nfhs-softball",
+                                                                   "usa-softball-2004"),
+    ("nsa", "softball-bpf"), ("isa", "softball-bpf"), ("usssa-slowpitch", "softball-bpf"),
+    ("little-league-softball", "softball-bpf"),
+])
+def test_each_performance_rule_runs_its_body_s_protocol(league, protocol):
+    """Which protocol judges each body's performance rule (the league files' sources say why)."""
+    from batcert.commands.inputs import load_league_any
+    rules = [r for r in load_league_any(league).rules if r.kind == "performance"]
+    assert [r.protocol for r in rules] == [protocol]
 
 
 def test_a_bat_over_the_weight_limit_fails():

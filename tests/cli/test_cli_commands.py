@@ -14,8 +14,8 @@ from jsonout import results
 
 REPO = Path(__file__).resolve().parents[2]
 ASH = REPO / "bats" / "ash-34.yaml"
-SHIPPED = ["astm-bpf", "ncaa-bbcor", "ncaa-besr", "proposed", "softball-bpf", "stationary-ball",
-           "usa-softball-2004"]
+SHIPPED = ["astm-bpf", "ncaa-bbcor", "ncaa-besr", "ncaa-softball-bbs", "proposed", "softball-bpf",
+           "stationary-ball", "usa-softball-2004", "usa-softball-2013-slowpitch", "wbsc-bbs"]
 CONDITION_KEYS = {"name", "pitch_speed", "bat_angular_speed", "impact_location", "exit_speed",
                   "bat_angular_speed_after", "cor", "bpf", "besr", "bbcor",
                   "collision_efficiency", "sweep"}
@@ -56,7 +56,10 @@ def test_protocols_lists_shipped(batcert_cli):
     limits = {p["id"]: p["limit"] for p in data}
     assert limits == {"astm-bpf": 1.15, "ncaa-bbcor": 0.5, "ncaa-besr": 0.728, "proposed": None,
                       "softball-bpf": 1.2, "stationary-ball": None,
-                      "usa-softball-2004": pytest.approx(98 * 0.44704, rel=1e-12)}
+                      "usa-softball-2004": pytest.approx(98 * 0.44704, rel=1e-12),
+                      "usa-softball-2013-slowpitch": pytest.approx(98 * 0.44704, rel=1e-12),
+                      "ncaa-softball-bbs": pytest.approx(98 * 0.44704, rel=1e-12),
+                      "wbsc-bbs": pytest.approx(100 * 0.44704, rel=1e-12)}
 
 
 def test_inspect_ash_json(batcert_cli):

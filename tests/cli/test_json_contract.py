@@ -27,7 +27,7 @@ COMMANDS = {
     "reduce": (["reduce", SESSION, "-p", "ncaa-bbcor", *RIGID], "lab", 1),
     "inspect": (["inspect", "ash-34"], None, 1),
     "validate": (["validate", "ash-34", "ncaa-bbcor"], None, 2),
-    "protocols": (["protocols"], None, 7),
+    "protocols": (["protocols"], None, 10),
     "list": (["list"], None, 5),
 }
 

@@ -60,7 +60,7 @@ def run(bat, inputs) -> RunResult:
 def dense_exit_speed(bat, inputs, cond_index, r):
     """Exit speed over impact locations ``r`` [m from pivot] for one condition (rigid engine)."""
     p = inputs.protocol
-    cond = conditions_from_spec(p.conditions, bat.model.length, p.pivot)[cond_index]
+    cond = conditions_from_spec(p.conditions, bat.model, p.pivot)[cond_index]
     vp, w1 = cond.speeds(r)
     out = get_engine("rigid").solve(bat.model, inputs.ball.model, p.pivot,
                                     ImpactBatch(r, vp, w1), p.support)
@@ -79,7 +79,7 @@ def test_matched_relative_speed(ash):
         assert c.bat_angular_speed == pytest.approx((60.0 - pitch[c.name]) / r, rel=1e-12)
         assert c.relative_speed == pytest.approx(60.0, rel=1e-12)
         assert c.rigid_sweet_spot is None  # Eq. 7 assumes speeds that do not vary with r
-    conds = conditions_from_spec(inputs.protocol.conditions, 0.86, 0.15)
+    conds = conditions_from_spec(inputs.protocol.conditions, ash.model, 0.15)
     r = np.linspace(0.4, 0.7, 7)
     for cond in conds:
         vp, w1 = cond.speeds(r)
@@ -95,6 +95,34 @@ def test_bat_speed_from_tip_sets_w1(ash):
     assert c.bat_angular_speed == pytest.approx(66 * MPH / (0.860 - 6 * IN - 6 * IN), rel=1e-12)
     assert c.pitch_speed == pytest.approx(-70 * MPH, rel=1e-12)
     assert c.setup == "pitched-and-swung"
+
+
+
+@pytest.mark.parametrize("exponent", [0.0, 0.25, 0.5])
+def test_bat_speed_from_moi_scales_w1(ash, protocol, exponent):
+    """bat_speed_from_moi: w1 = w1_ref (I / I_ref)^-n with I the bat's MOI about the pivot
+    (batcert.physics.swing); the ash bat's I is 0.209 kg m^2 about 150 mm (Smith 2001), the
+    reference 0.150 kg m^2 is arbitrary. Both sides are the same closed form: rel=1e-12."""
+    inputs = protocol(f"""\
+        pivot: 150 mm
+        conditions:
+          - name: swung
+            pitch_speed: 25 mph
+            bat_speed: 85 mph
+            bat_speed_from_tip: 6 in
+            bat_speed_from_moi:
+              reference_moi: 0.150 kg*m^2
+              exponent: {exponent}
+        impact_location:
+          rule: sweet-spot
+          window: [2 in, 12 in]
+        metric: exit-speed
+        """)
+    (c,) = run(ash, inputs).conditions
+    moi = ash.model.moi_about(0.150)
+    assert moi == pytest.approx(0.209, rel=2e-3)  # the bat file's measured MOI
+    w1_ref = 85 * MPH / (0.860 - 6 * IN - 0.150)
+    assert c.bat_angular_speed == pytest.approx(w1_ref * (moi / 0.150) ** -exponent, rel=1e-12)
 
 
 SWUNG = textwrap.dedent("""\

@@ -21,9 +21,9 @@ MPH, LBF, IN = 0.44704, 4.4482216152605, 0.0254
 
 
 def test_every_softball_is_shipped():
-    assert [p.stem for p in SOFTBALLS] == ["softball-fastpitch-47-375", "softball-ncaa-47-350",
-                                           "softball-slowpitch-44-375",
-                                           "softball-slowpitch-52-300"]
+    assert [p.stem for p in SOFTBALLS] == ["softball-11in-44-375", "softball-fastpitch-47-375",
+                                           "softball-ncaa-47-350", "softball-slowpitch-44-375",
+                                           "softball-slowpitch-52-300", "softball-test-52-275"]
 
 
 @pytest.mark.parametrize("path", SOFTBALLS, ids=[p.stem for p in SOFTBALLS])

@@ -118,6 +118,11 @@ CASES: dict[str, list[Expect]] = {
                                    "bat_angular_speed or bat_speed) or a matched relative_speed, "
                                    "not both"),
     ],
+    "protocol-moi-scaling-misplaced.yaml": [
+        Expect(10, "conditions[0].bat_speed_from_moi", "scales the bat speed, which is zero here"),
+        Expect(16, "conditions[1].bat_speed_from_moi", "only with bat_speed or bat_angular_speed"),
+        Expect(25, "conditions[2].bat_speed_from_moi.exponent", "must be at most 1"),
+    ],
     "protocol-missing-speeds.yaml": [Expect(8, "conditions[0]", "give the speeds")],
     "protocol-bat-speed-without-position.yaml": [
         Expect(10, "conditions[0].bat_speed_from_tip", "bat_speed needs bat_speed_from_tip"),
@@ -137,8 +142,9 @@ CASES: dict[str, list[Expect]] = {
     ],
     "protocol-unknown-ball.yaml": [
         Expect(6, "ball", "unknown ball 'colegiate-baseball' (shipped: collegiate-baseball, "
-                          "nathan-2000, softball-fastpitch-47-375, softball-ncaa-47-350, "
-                          "softball-slowpitch-44-375, softball-slowpitch-52-300); did you mean "
+                          "nathan-2000, softball-11in-44-375, softball-fastpitch-47-375, "
+                          "softball-ncaa-47-350, softball-slowpitch-44-375, "
+                          "softball-slowpitch-52-300, softball-test-52-275); did you mean "
                           "'collegiate-baseball'?"),
     ],
     "protocol-limit-without-unit.yaml": [

@@ -20,8 +20,9 @@ IN = 0.0254  # [m], REFERENCE-DATA Units
 MPH = 0.44704  # [m/s]
 OZ = 0.028349523125  # [kg]
 
-SHIPPED_PROTOCOLS = {"astm-bpf", "ncaa-bbcor", "ncaa-besr", "proposed", "softball-bpf",
-                     "stationary-ball", "usa-softball-2004"}
+SHIPPED_PROTOCOLS = {"astm-bpf", "ncaa-bbcor", "ncaa-besr", "ncaa-softball-bbs", "proposed",
+                     "softball-bpf", "stationary-ball", "usa-softball-2004",
+                     "usa-softball-2013-slowpitch", "wbsc-bbs"}
 
 
 def test_shipped_names_resolve():

@@ -211,7 +211,7 @@ def test_a_drawn_result_is_the_metric_at_its_point(ash, protocols, nominal, flex
     p, run = protocols[pid], nominal[pid]
     at_nominal = fit_of(ash, p, run, flexible)
     inputs, z = draws(ash.spec, [p.ball], 6, DEFAULT_SEED)
-    conds = conditions_from_spec(p.protocol.conditions, ash.model.length, p.protocol.pivot)
+    conds = conditions_from_spec(p.protocol.conditions, ash.model, p.protocol.pivot)
     for row in z:
         spec, (ball,) = sampled(ash.spec, [p.ball], inputs, row)
         drawn = build_bat(spec)

@@ -11,6 +11,18 @@ import pytest
 from batcert.commands.league import run_league
 
 
+def _checked_rules(league: str, bat: str, verdicts: dict) -> dict:
+    """The league's rule results for ``bat`` (rigid engine), each rule of ``verdicts`` present
+    with its verdict (None: any)."""
+    result = run_league(league, [bat], engine="rigid")
+    rules = {r.rule: r for r in result.bats[0].rules}
+    assert set(rules) == set(verdicts)
+    for name, verdict in verdicts.items():
+        if verdict is not None:
+            assert rules[name].verdict == verdict, name
+    return rules
+
+
 @pytest.mark.parametrize("league, verdicts", [
     ("little-league-intermediate", {"length": "pass", "diameter": "pass",
                                     "performance": "not-modelled"}),
@@ -21,12 +33,7 @@ from batcert.commands.league import run_league
     ("dixie-boys", {"diameter": "pass", "performance": "not-modelled"}),
 ])
 def test_every_rule_is_evaluated_or_said_not_to_be(league, verdicts):
-    result = run_league(league, ["bbcor-alloy-34"], engine="rigid")
-    rules = {r.rule: r for r in result.bats[0].rules}
-    assert set(rules) == set(verdicts)
-    for name, verdict in verdicts.items():
-        if verdict is not None:
-            assert rules[name].verdict == verdict, name
+    rules = _checked_rules(league, "bbcor-alloy-34", verdicts)
     if "bbcor" in rules:
         assert rules["bbcor"].protocol == "ncaa-bbcor" and rules["bbcor"].verdict in ("pass",
                                                                                       "fail")
@@ -49,12 +56,7 @@ IN, OZ = 0.0254, 0.028349523125
 def test_the_youth_bat_under_the_youth_leagues(league, verdicts):
     """The drop rules by USSSA division (13U: at most 8, 14U: at most 5; USSSA statement as
     quoted, REFERENCE-DATA.md H) on a drop-10 bat: margins by arithmetic on the bat file."""
-    result = run_league(league, ["youth-alloy-30"], engine="rigid")
-    rules = {r.rule: r for r in result.bats[0].rules}
-    assert set(rules) == set(verdicts)
-    for name, verdict in verdicts.items():
-        if verdict is not None:
-            assert rules[name].verdict == verdict, name
+    rules = _checked_rules(league, "youth-alloy-30", verdicts)
     if "drop" in rules:
         limit = {"usssa-13u": 8, "usssa-14u": 5}[league]
         drop = 30 - 20  # the bat's length in inches minus its weight in ounces

@@ -16,7 +16,8 @@ OZ = 0.028349523125
 @pytest.mark.parametrize("league, modelled, not_modelled", [
     ("usa-softball", {"length", "weight", "barrel", "bbs"}, {"approved-list"}),
     ("usssa-slowpitch", {"length", "barrel", "bpf"}, {"weight", "compression"}),
-    ("ncaa-softball", {"length", "weight", "barrel", "bbs"}, {"compression"}),
+    ("ncaa-softball", {"length", "weight", "barrel", "bbs"}, {"compression", "approved-list"}),
+    ("usssa-fastpitch", {"length", "weight", "barrel", "bpf"}, set()),
     ("nsa", {"length", "weight", "barrel", "bpf"}, set()),
     ("little-league-softball", {"barrel", "bpf"}, {"length-by-division"}),
     ("wbsc", {"length", "weight", "barrel", "performance"}, set()),
@@ -42,6 +43,7 @@ def test_every_rule_a_model_can_evaluate_is_evaluated(league, modelled, not_mode
     ("ncaa-softball", "ncaa-softball-bbs"), ("wbsc", "wbsc-bbs"), ("nfhs-softball",
                                                                    "usa-softball-2004"),
     ("nsa", "softball-bpf"), ("isa", "softball-bpf"), ("usssa-slowpitch", "softball-bpf"),
+    ("usssa-fastpitch", "softball-bpf"),
     ("little-league-softball", "softball-bpf"),
 ])
 def test_each_performance_rule_runs_its_body_s_protocol(league, protocol):

@@ -188,16 +188,7 @@ def fly(exit_speed, launch_angle, backspin, sidespin=0.0, direction=0.0, *,
     while not landed.all():
         if t > max_time:
             raise ValueError(f"a ball is still in the air after {max_time:g} s")
-        k1v = acc(t, vel)
-        k1x = vel
-        k2v = acc(t + step / 2, vel + step / 2 * k1v)
-        k2x = vel + step / 2 * k1v
-        k3v = acc(t + step / 2, vel + step / 2 * k2v)
-        k3x = vel + step / 2 * k2v
-        k4v = acc(t + step, vel + step * k3v)
-        k4x = vel + step * k3v
-        new_pos = pos + step / 6 * (k1x + 2 * k2x + 2 * k3x + k4x)
-        new_vel = vel + step / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)
+        new_pos, new_vel = _rk4_step(acc, t, pos, vel, step)
         apex = np.where(landed, apex, np.maximum(apex, new_pos[:, 2]))
         down = ~landed & (new_pos[:, 2] <= 0.0)
         if down.any():
@@ -208,6 +199,17 @@ def fly(exit_speed, launch_angle, backspin, sidespin=0.0, direction=0.0, *,
         pos, vel, t = new_pos, new_vel, t + step
     return Flight(distance=np.hypot(where[:, 0], where[:, 1]), hang_time=t_land, apex=apex,
                   landing=where)
+
+
+def _rk4_step(acc, t, pos, vel, h):
+    """One classical Runge-Kutta step of x' = v, v' = acc(t, v) (the acceleration does not
+    depend on the position)."""
+    k1 = acc(t, vel)
+    k2 = acc(t + h / 2, vel + h / 2 * k1)
+    k3 = acc(t + h / 2, vel + h / 2 * k2)
+    k4 = acc(t + h, vel + h * k3)
+    new_pos = pos + h / 6 * (vel + 2 * (vel + h / 2 * k1) + 2 * (vel + h / 2 * k2) + vel + h * k3)
+    return new_pos, vel + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
 
 
 def _touchdown(p0, v0, p1, v1, h):

@@ -71,21 +71,16 @@ from fe_tube_reference import (  # noqa: E402
     CLASSES,
     F_PATCH,
     LEN,
-    P_PER_N,
     PATCH_ARC,
     PATCH_LEN,
     RO,
     SOLVER_NAME,
-    TH_P,
-    brief,
     case_C,
-    grid,
     identify,
     jdump,
     log,
     mode_type,
     modes_class,
-    squeeze_outputs,
 )
 
 # ----------------------------------------------------------------------------
@@ -268,24 +263,9 @@ class LamTube(ref.Tube):
         return ((K + K.T) * 0.5).tocsr(), sum(Ms[1:], Ms[0]).tocsr()
 
 
-# ----------------------------------------------------------------------------
-# Model factories (as fe_tube_reference.eighth_model / quarter_full_length_model)
-# ----------------------------------------------------------------------------
 def eighth_model(plies, lev):
-    """theta in [0, 90 deg], z in [0, L/2] from mid-length; patch edges and the
-    quarter-length station z = L/4 are element boundaries."""
-    L = LEVELS[lev]
-    th = grid([0.0, TH_P, np.pi / 2], L['h_th'] / RO)
-    z = grid([0.0, PATCH_LEN / 2, LEN / 4, LEN / 2], L['h_z'])
-    return LamTube(plies, th, z, L['nr'])
-
-
-def quarter_full_length_model(plies, lev, zc):
-    """theta in [0, 90 deg], z in [-L/2, L/2]; patch centred at z = zc."""
-    L = LEVELS[lev]
-    th = grid([0.0, TH_P, np.pi / 2], L['h_th'] / RO)
-    bz = sorted(set([-LEN / 2, -LEN / 4, 0.0, zc - PATCH_LEN / 2, zc + PATCH_LEN / 2, LEN / 2]))
-    return LamTube(plies, th, grid(bz, L['h_z']), L['nr'])
+    """fe_tube_reference.eighth_model with the laminated tube and this script's levels."""
+    return ref.eighth_model(plies, lev, LamTube, LEVELS)
 
 
 # ----------------------------------------------------------------------------
@@ -349,24 +329,6 @@ def case_B(model, k=10):
         th: float(shell_ss_freqs(model.plies, n, m, th)[0]) for th in ['sanders', 'donnell']})
 
 
-def case_D(plies, lev):
-    zc = LEN / 2 - 0.050
-    model = quarter_full_length_model(plies, lev, zc)
-    fixed = model.bc(th0='S', th90='S')
-    # the only remaining rigid-body mode is translation along z: fix u_z of one node
-    outer = np.abs(model.r - RO) < 1e-9
-    i0 = np.nonzero(outer & (np.abs(model.th - np.pi / 2) < 1e-9) & (np.abs(model.z) < 1e-9))[0][0]
-    fixed = np.unique(np.concatenate([fixed, [3 * i0 + 2]]))
-    f, a, area, nf = model.patch(zc, F_PATCH * P_PER_N)
-    model.patch_area_full = PATCH_LEN * PATCH_ARC
-    U, lu, free_dofs = model.static(fixed, f)
-    out = squeeze_outputs(model, U, a, area, f, F_PATCH, zc)
-    out.update(resultant_check_N=-2 * f[0::3].sum(), reaction_uz_check_N=float((model.K @ U)[3 * i0 + 2]),
-               patch_centre_z_from_end_mm=(LEN / 2 - zc) * 1e3, patch_area_check_mm2=2 * area * 1e6,
-               ndof=model.N, nel=model.nel, t_asm_s=model.time_asm)
-    return out
-
-
 # ----------------------------------------------------------------------------
 # Drivers
 # ----------------------------------------------------------------------------
@@ -375,32 +337,12 @@ def run_layup(name, lev, cases):
     out = {}
     T0 = time.time()
     model = eighth_model(plies, lev)
-    out['mesh'] = dict(level=lev, ndof=model.N, nel=model.nel, **LEVELS[lev],
-                       n_theta_quarter=int(len(np.unique(model.th.round(12))) - 1) // 2,
-                       n_z_half=int(len(np.unique(model.z.round(12))) - 1) // 2,
-                       t_asm_s=model.time_asm)
+    out['mesh'] = ref.mesh_record(model, lev, LEVELS)
     log('  %s %s: 1/8 model %d dof, %d el, asm %.1f s' % (name, lev, model.N, model.nel, model.time_asm))
     if 'A' in cases:
-        t0 = time.time()
-        res, allm = case_A(model)
-        out['A'] = {kk: brief(v) for kk, v in res.items()}
-        out['A_all_modes'] = [dict(f_Hz=m['f_Hz'], cls=m['class'], n=m['n'], axial_sign_changes=m['axial_sign_changes'],
-                                   type=m['type'], E_r=round(m['E_radial'], 3), E_t=round(m['E_circ'], 3),
-                                   E_z=round(m['E_axial'], 3)) for m in allm]
-        out['A_time_s'] = time.time() - t0
-        for kk, v in res.items():
-            log('    A %-12s %s' % (kk, 'NOT IDENTIFIED' if v is None else '%.1f Hz (%s)' % (v['f_Hz'], v['class'])))
+        ref.run_case_A(out, case_A, model)
     if 'B' in cases:
-        t0 = time.time()
-        res, allm, shell = case_B(model)
-        out['B'] = {kk: brief(v) for kk, v in res.items()}
-        out['B_shell_theory_Hz'] = shell
-        out['B_all_modes'] = [dict(f_Hz=m['f_Hz'], cls=m['class'], n=m['n'], axial_sign_changes=m['axial_sign_changes'],
-                                   type=m['type']) for m in allm]
-        out['B_time_s'] = time.time() - t0
-        for kk, v in res.items():
-            log('    B %-8s FE %s  Sanders (CLT) %.1f Hz' % (
-                kk, 'NOT IDENTIFIED' if v is None else '%.1f Hz' % v['f_Hz'], shell[kk]['sanders']))
+        ref.run_case_B(out, case_B, model, 'Sanders (CLT)', 'sanders')
     if 'C' in cases:
         t0 = time.time()
         out['C'] = case_C(model)[0]
@@ -408,10 +350,7 @@ def run_layup(name, lev, cases):
         log('    C approach %.5f mm, patch-avg %.5f mm' % (out['C']['approach_mm'], out['C']['patch_avg_inward_mm']))
     del model
     if 'D' in cases:
-        t0 = time.time()
-        out['D'] = case_D(plies, lev)
-        out['D_time_s'] = time.time() - t0
-        log('    D approach %.5f mm, patch-avg %.5f mm' % (out['D']['approach_mm'], out['D']['patch_avg_inward_mm']))
+        ref.run_case_D(out, plies, lev, LamTube, LEVELS)
     out['wall_time_s'] = time.time() - T0
     log('    %s %s done in %.1f s' % (name, lev, out['wall_time_s']))
     return out

@@ -554,22 +554,25 @@ def shell_ss_freqs(n, m, t, theory='flugge'):
 # ----------------------------------------------------------------------------
 # Model factories
 # ----------------------------------------------------------------------------
-def eighth_model(t, lev):
+def eighth_model(t, lev, tube=None, levels=None):
     """theta in [0, 90 deg], z in [0, L/2] from mid-length; patch edges, and the
-    quarter-length station z=L/4 are element boundaries."""
-    L = LEVELS[lev]
+    quarter-length station z=L/4 are element boundaries.  `tube` is the mesh class and
+    `levels` the mesh levels (default Tube and LEVELS; fe_laminate_tube passes its laminated
+    tube, `t` then its plies, and its own levels)."""
+    L = (levels or LEVELS)[lev]
     th = grid([0.0, TH_P, np.pi / 2], L['h_th'] / RO)
     z = grid([0.0, PATCH_LEN / 2, LEN / 4, LEN / 2], L['h_z'])
-    return Tube(t, th, z, L['nr'])
+    return (tube or Tube)(t, th, z, L['nr'])
 
 
-def quarter_full_length_model(t, lev, zc):
-    """theta in [0, 90 deg], z in [-L/2, L/2]; patch centred at z=zc."""
-    L = LEVELS[lev]
+def quarter_full_length_model(t, lev, zc, tube=None, levels=None):
+    """theta in [0, 90 deg], z in [-L/2, L/2]; patch centred at z=zc (tube, levels: as
+    eighth_model)."""
+    L = (levels or LEVELS)[lev]
     th = grid([0.0, TH_P, np.pi / 2], L['h_th'] / RO)
     bz = sorted(set([-LEN / 2, -LEN / 4, 0.0, zc - PATCH_LEN / 2, zc + PATCH_LEN / 2, LEN / 2]))
     z = grid(bz, L['h_z'])
-    return Tube(t, th, z, L['nr'])
+    return (tube or Tube)(t, th, z, L['nr'])
 
 
 # symmetry classes of the quarter model: name -> (bc at theta=0, bc at theta=90,
@@ -685,9 +688,9 @@ def case_C(model):
     return out, f, a, area, U, lu, free_dofs, fixed
 
 
-def case_D(t, lev):
+def case_D(t, lev, tube=None, levels=None):
     zc = LEN / 2 - 0.050
-    model = quarter_full_length_model(t, lev, zc)
+    model = quarter_full_length_model(t, lev, zc, tube, levels)
     fixed = model.bc(th0='S', th90='S')
     # the only remaining rigid-body mode is translation along z: fix u_z of one node
     outer = np.abs(model.r - RO) < 1e-9
@@ -814,36 +817,60 @@ def brief(m):
                               'W_end_over_max', 'W_mid_over_max', 'type']}
 
 
+def mesh_record(model, lev, levels=None):
+    """The mesh of a 1/8 model as run records it (levels: as eighth_model)."""
+    return dict(level=lev, ndof=model.N, nel=model.nel, **(levels or LEVELS)[lev],
+                n_theta_quarter=int(len(np.unique(model.th.round(12))) - 1) // 2,
+                n_z_half=int(len(np.unique(model.z.round(12))) - 1) // 2,
+                t_asm_s=model.time_asm)
+
+
+def run_case_A(out, solve, model, **kw):
+    """Case A (free-free modes) by `solve(model, **kw)`, recorded into `out` and logged."""
+    t0 = time.time()
+    res, allm = solve(model, **kw)
+    out['A'] = {kk: brief(v) for kk, v in res.items()}
+    out['A_all_modes'] = [dict(f_Hz=m['f_Hz'], cls=m['class'], n=m['n'], axial_sign_changes=m['axial_sign_changes'],
+                               type=m['type'], E_r=round(m['E_radial'], 3), E_t=round(m['E_circ'], 3),
+                               E_z=round(m['E_axial'], 3)) for m in allm]
+    out['A_time_s'] = time.time() - t0
+    for kk, v in res.items():
+        log('    A %-12s %s' % (kk, 'NOT IDENTIFIED' if v is None else '%.1f Hz (%s)' % (v['f_Hz'], v['class'])))
+
+
+def run_case_B(out, solve, model, theory_label, theory_key, **kw):
+    """Case B (shear-diaphragm modes) by `solve(model, **kw)`, recorded into `out` and logged
+    beside the thin-shell theory `theory_key` of its output."""
+    t0 = time.time()
+    res, allm, shell = solve(model, **kw)
+    out['B'] = {kk: brief(v) for kk, v in res.items()}
+    out['B_shell_theory_Hz'] = shell
+    out['B_all_modes'] = [dict(f_Hz=m['f_Hz'], cls=m['class'], n=m['n'], axial_sign_changes=m['axial_sign_changes'],
+                               type=m['type']) for m in allm]
+    out['B_time_s'] = time.time() - t0
+    for kk, v in res.items():
+        log('    B %-8s FE %s  %s %.1f Hz' % (kk, 'NOT IDENTIFIED' if v is None else '%.1f Hz' % v['f_Hz'],
+                                             theory_label, shell[kk][theory_key]))
+
+
+def run_case_D(out, t, lev, tube=None, levels=None):
+    """Case D (the full-length static squeeze) recorded into `out` and logged."""
+    t0 = time.time()
+    out['D'] = case_D(t, lev, tube, levels)
+    out['D_time_s'] = time.time() - t0
+    log('    D approach %.5f mm, patch-avg %.5f mm' % (out['D']['approach_mm'], out['D']['patch_avg_inward_mm']))
+
+
 def run_wall(t, lev, cases, k=12):
     out = {}
     T0 = time.time()
     model = eighth_model(t, lev)
-    out['mesh'] = dict(level=lev, ndof=model.N, nel=model.nel, **LEVELS[lev],
-                       n_theta_quarter=int(len(np.unique(model.th.round(12))) - 1) // 2,
-                       n_z_half=int(len(np.unique(model.z.round(12))) - 1) // 2,
-                       t_asm_s=model.time_asm)
+    out['mesh'] = mesh_record(model, lev)
     log('  t=%.1f mm %s: 1/8 model %d dof, %d el, asm %.1f s' % (t * 1e3, lev, model.N, model.nel, model.time_asm))
     if 'A' in cases:
-        t0 = time.time()
-        res, allm = case_A(model, k=k)
-        out['A'] = {kk: brief(v) for kk, v in res.items()}
-        out['A_all_modes'] = [dict(f_Hz=m['f_Hz'], cls=m['class'], n=m['n'], axial_sign_changes=m['axial_sign_changes'],
-                                   type=m['type'], E_r=round(m['E_radial'], 3), E_t=round(m['E_circ'], 3),
-                                   E_z=round(m['E_axial'], 3)) for m in allm]
-        out['A_time_s'] = time.time() - t0
-        for kk, v in res.items():
-            log('    A %-12s %s' % (kk, 'NOT IDENTIFIED' if v is None else '%.1f Hz (%s)' % (v['f_Hz'], v['class'])))
+        run_case_A(out, case_A, model, k=k)
     if 'B' in cases:
-        t0 = time.time()
-        res, allm, shell = case_B(model, k=10)
-        out['B'] = {kk: brief(v) for kk, v in res.items()}
-        out['B_shell_theory_Hz'] = shell
-        out['B_all_modes'] = [dict(f_Hz=m['f_Hz'], cls=m['class'], n=m['n'], axial_sign_changes=m['axial_sign_changes'],
-                                   type=m['type']) for m in allm]
-        out['B_time_s'] = time.time() - t0
-        for kk, v in res.items():
-            log('    B %-8s FE %s  Flugge %.1f Hz' % (kk, 'NOT IDENTIFIED' if v is None else '%.1f Hz' % v['f_Hz'],
-                                                      shell[kk]['flugge']))
+        run_case_B(out, case_B, model, 'Flugge', 'flugge', k=10)
     if 'C' in cases or 'E' in cases:
         t0 = time.time()
         resC, f1, a, area, U, lu, free_dofs, fixed = case_C(model)
@@ -852,10 +879,7 @@ def run_wall(t, lev, cases, k=12):
         log('    C approach %.5f mm, patch-avg %.5f mm, k = %.4e N/m' % (
             resC['approach_mm'], resC['patch_avg_inward_mm'], resC['stiffness_F_over_avg_N_per_m']))
     if 'D' in cases:
-        t0 = time.time()
-        out['D'] = case_D(t, lev)
-        out['D_time_s'] = time.time() - t0
-        log('    D approach %.5f mm, patch-avg %.5f mm' % (out['D']['approach_mm'], out['D']['patch_avg_inward_mm']))
+        run_case_D(out, t, lev)
     if 'E' in cases:
         t0 = time.time()
         out['E'] = case_E(model, f1, a, area, lu, free_dofs, fixed, newmark=(lev == 'M1'),

@@ -18,6 +18,7 @@ sys.path.insert(0, str(ROOT))
 
 from batcert.specs.ball import BALL_SCHEMA  # noqa: E402
 from batcert.specs.bat import BAT_SCHEMA  # noqa: E402
+from batcert.specs.batter import BATTER_SCHEMA  # noqa: E402
 from batcert.specs.kinds import CLAIM_CHECKS, RULE_KINDS  # noqa: E402
 from batcert.specs.league import LEAGUE_SCHEMA  # noqa: E402
 from batcert.specs.materials import LIBRARY  # noqa: E402
@@ -327,6 +328,18 @@ Claim checks:
 """
 
 
+BATTER_INTRO = """\
+## Batter files (`protocols/batters/*.yaml`)
+
+A batter profile is a level of play for `batcert field BAT --batter ID`: the bat speed its
+batters reach at a station near the head (bat tracking measures 6 in from the tip) with a bat of
+stated length and moment of inertia about the swing axis, the swing law's exponent ``n`` with its
+uncertainty (``w = C / I^n``: each bat is swung at ``w = w_ref (I / I_ref)^-n``, ``I`` about the
+axis near the knob), the pitch speed and the ball. Every number names its source. Shipped:
+`youth-12u`, `high-school`, `college`, `pro`, `fastpitch`, `slowpitch`.
+"""
+
+
 def _kinds_table() -> str:
     rows = ["| kind | what is checked |", "|---|---|"]
     rows += [f"| `{k}` | {v.describe} |" for k, v in RULE_KINDS.items()]
@@ -345,7 +358,8 @@ def generate() -> str:
              *_part(BALL_INTRO, BALL_SCHEMA, {}),
              *_part(PROTOCOL_INTRO, PROTOCOL_SCHEMA, NOTES_PROTOCOL),
              *_part(LEAGUE_INTRO.format(kinds=_kinds_table()), LEAGUE_SCHEMA, {}),
-             *_part(STUDY_INTRO.format(checks=_checks_table()), STUDY_SCHEMA, {})]
+             *_part(STUDY_INTRO.format(checks=_checks_table()), STUDY_SCHEMA, {}),
+             *_part(BATTER_INTRO, BATTER_SCHEMA, {})]
     return "\n".join(p.rstrip("\n") + "\n" for p in parts)
 
 

@@ -140,7 +140,8 @@ Examples:
   batcert list studies
   batcert list bats --json""")
 @click.argument("kind", required=False,
-                type=click.Choice(["bats", "balls", "protocols", "leagues", "studies"]))
+                type=click.Choice(["bats", "balls", "protocols", "leagues", "studies",
+                                  "batters"]))
 @click.option("--json", "as_json", is_flag=True, help="Print only JSON on stdout.")
 def list_(kind, as_json):
     """List the shipped bats, balls, protocols, leagues and studies (or one KIND of them):

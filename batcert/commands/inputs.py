@@ -16,6 +16,7 @@ from batcert.specs.resolve import NotFound, resolve
 from batcert.specs.yamlio import load_yaml
 
 if TYPE_CHECKING:
+    from batcert.specs.batter import BatterSpec
     from batcert.specs.league import LeagueSpec
     from batcert.specs.study import StudySpec
 
@@ -93,6 +94,30 @@ def league_protocols(spec: LeagueSpec) -> dict[str, ProtocolInputs]:
     return out
 
 
+@dataclass(frozen=True)
+class BatterInputs:
+    """A loaded batter profile with its ball."""
+
+    batter: BatterSpec
+    ball: BallSpec
+
+
+def batter_inputs(path: str | Path) -> BatterInputs:
+    """A batter file with its ball; an unknown ball is invalid input at its ``ball:`` line."""
+    from batcert.specs.batter import load_batter  # not on a run's path
+    spec = load_batter(path)
+    try:
+        ball = resolve("ball", spec.ball, relative_to=Path(spec.path))
+    except NotFound as exc:
+        raise spec.source.problem("ball", str(exc)) from None
+    return BatterInputs(spec, load_ball(ball))
+
+
+def load_batter_any(value: str) -> BatterInputs:
+    """A batter profile from a path or a shipped name (e.g. ``college``), with its ball."""
+    return batter_inputs(resolve("batter", value))
+
+
 def study_inputs(spec: StudySpec) -> tuple[list[ProtocolInputs], list[LoadedBat]]:
     """A study's protocols with their balls, and its default bats, loaded and built."""
     return [protocol_inputs(p) for p in spec.protocols], load_bats([str(b) for b in spec.bats])
@@ -110,6 +135,8 @@ def detect_kind(path: str) -> str:
     data = load_yaml(path)
     if "hits" in data:
         return "session"
+    if "swing" in data and "pitch_speed" in data:
+        return "batter"
     if "conditions" in data or "metric" in data:
         return "protocol"
     if "rules" in data:

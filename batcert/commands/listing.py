@@ -17,12 +17,12 @@ def list_protocols() -> list[dict]:
 
 
 LIST_KINDS = {"bats": "bat", "balls": "ball", "protocols": "protocol", "leagues": "league",
-              "studies": "study"}
+              "studies": "study", "batters": "batter"}
 
 
 def list_shipped(kind: str) -> list[dict]:
     """The shipped files of one kind (``bats``, ``balls``, ``protocols``, ``leagues``,
-    ``studies``): name, title and where it ships."""
+    ``studies``, ``batters``): name, title and where it ships."""
     from batcert.specs.resolve import display_path
     from batcert.specs.yamlio import load_yaml
     out = []

@@ -23,7 +23,14 @@ _LOADERS = {
     "study": lambda path: _study_fits(load_study(path)),
     "bat": lambda path: build_bat(load_bat(path)),
     "session": lambda path: _session(path),
+    "batter": lambda path: _batter(path),
 }
+
+
+def _batter(path) -> None:
+    """A batter file loads with its ball."""
+    from batcert.commands.inputs import batter_inputs
+    batter_inputs(path)
 
 
 def _session(path) -> None:

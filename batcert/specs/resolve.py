@@ -1,4 +1,4 @@
-"""Find shipped protocols, balls, leagues and example bats by name, from a checkout or a wheel.
+"""Find shipped protocols, balls, leagues, batters and example bats by name, from a checkout or a wheel.
 
 In a wheel the shipped YAML lives in ``batcert/shipped/`` (copied there at build time, see
 pyproject.toml); in a source checkout it is read from the top-level ``protocols/`` and ``bats/``.
@@ -20,6 +20,7 @@ KINDS = {
     "league": ("protocols/leagues",),
     "bat": ("bats",),
     "study": ("protocols/studies",),
+    "batter": ("protocols/batters",),
 }
 
 

@@ -12,8 +12,8 @@ The functions of :mod:`batcert.api` are available here; they are imported on fir
 
 from batcert.version import __version__
 
-__all__ = ["__version__", "compare", "design", "league", "load_bat", "load_protocol", "reduce",
-           "run", "sweep", "use_cache"]
+__all__ = ["__version__", "compare", "design", "field", "league", "load_bat", "load_protocol",
+           "reduce", "run", "sweep", "use_cache"]
 
 
 def __getattr__(name: str):

@@ -22,12 +22,13 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from batcert.commands.inputs import LoadedBat, ProtocolInputs
     from batcert.results.compare import ComparisonResult
+    from batcert.results.field import FieldResult
     from batcert.results.lab import LabResult
     from batcert.results.league import LeagueResult
     from batcert.results.run import RunResult
     from batcert.results.sweep import SweepResult
 
-__all__ = ["compare", "design", "league", "load_bat", "load_protocol", "reduce", "run", "sweep",
+__all__ = ["compare", "design", "field", "league", "load_bat", "load_protocol", "reduce", "run", "sweep",
            "use_cache"]
 
 _chosen = [False]  # whether use_cache was called (else the first call turns the cache on)
@@ -102,6 +103,31 @@ def league(league_id: str | Path, bats: Sequence[str | Path],
     from batcert.commands.league import run_league
     _ready()
     return run_league(str(league_id), [str(b) for b in bats], engine)
+
+
+def field(bats: str | Path | Sequence[str | Path], batters: str | Sequence[str] = "college",
+          reference: str | Path = "ash-34", engine: str = "flexible", *,
+          pitch_speed: float | None = None, launch_angle: float = 28.0,
+          backspin: float | None = None, sidespin: float | None = None,
+          temperature: float = 294.261, elevation: float = 0.0) -> FieldResult:
+    """What ``bats`` do in play for each batter profile (shipped: ``youth-12u``,
+    ``high-school``, ``college``, ``pro``, ``fastpitch``, ``slowpitch``; a batter YAML path;
+    ``"all"``): each bat swung at the speed its MOI allows, its best batted-ball speed, sweet
+    zone, e_A and carry, and the gains over ``reference``, also under a constant swing speed.
+    ``pitch_speed`` [m/s] replaces the profiles' own; ``launch_angle`` [deg]; spins [rpm]
+    (default: Nathan's calculator's for the angle); ``temperature`` [K]; ``elevation`` [m]."""
+    import math
+
+    from batcert.commands.field import FieldSettings, run_field
+    _ready()
+    rpm = math.pi / 30
+    settings = FieldSettings(math.radians(launch_angle),
+                             None if backspin is None else backspin * rpm,
+                             None if sidespin is None else sidespin * rpm, temperature,
+                             elevation, pitch_speed=pitch_speed)
+    bat_list = [bats] if isinstance(bats, (str, Path)) else list(bats)
+    batter_list = [batters] if isinstance(batters, str) else list(batters)
+    return run_field([str(b) for b in bat_list], batter_list, str(reference), engine, settings)
 
 
 def sweep(bat: str | Path, protocol: str | Path, vary: Sequence[str],

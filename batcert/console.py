@@ -264,9 +264,7 @@ def _verdict(verdict: str | None) -> tuple[str, str]:
 
 
 def _wrote(paths: Sequence[Any]) -> None:
-    if _Settings.quiet:
-        return
-    for p in paths:
+    for p in [] if _Settings.quiet else paths:
         _emit([(f"  wrote {p}", "")])
 
 
@@ -349,6 +347,16 @@ def league_summary(result, paths: Sequence[Any]) -> None:
                     [[r["id"], r["value"], r["limit"], r["badge"], r["margin"], r["note"]]
                      for r in b["rules"]], [False, True, True, False, True, False]))
         _warnings(b["warnings"])
+    _wrote(paths)
+
+
+def field_summary(result, paths: Sequence[Any]) -> None:
+    """Terminal view of an in-play prediction: per batter profile, the bats' table."""
+    from batcert.reports.field_view import PREDICTION, terminal_tables
+    _emit([("model prediction", "bold"), (f"  {PREDICTION}", "")])
+    for title, t in terminal_tables(result):
+        table(t, title)
+    _warnings(result.warnings)
     _wrote(paths)
 
 

@@ -115,6 +115,27 @@ class Flight:
     landing: np.ndarray  # (n, 2) landing point x, y [m]
 
 
+def default_spin(launch_angle, direction=0.0, handedness=1.0):
+    """Backspin and sidespin [rad/s] of a batted ball whose spin was not measured: the Statcast
+    regression Nathan's calculator uses by default,
+    ``backspin = -763 + 120 LA + 21 phi s`` and ``sidespin = -849 s - 94 phi`` [rpm] with the
+    launch angle ``LA`` and spray angle ``phi`` in degrees and ``s`` = +1 for a right-handed
+    batter, -1 for a left-handed one (the calculator's sheet; docs/references.md
+    "Trajectory"). The sidespin's sign follows :func:`fly`.
+
+    Parameters
+    ----------
+    launch_angle, direction : array_like
+        [rad], as :func:`fly` takes them.
+    handedness : float
+        +1 right-handed, -1 left-handed.
+    """
+    la, phi = np.degrees(launch_angle), np.degrees(direction)
+    back = -763.0 + 120.0 * la + 21.0 * phi * handedness
+    side = -849.0 * handedness - 94.0 * phi
+    return np.asarray(back * RPM, float), np.asarray(side * RPM, float)
+
+
 def _launch(exit_speed, launch_angle, direction, backspin, sidespin):
     """Initial velocity (n, 3) and spin vector (n, 3) [rad/s] from the launch conditions:
     backspin about the horizontal axis normal to the flight (lifting the ball), sidespin about
@@ -133,14 +154,19 @@ def _launch(exit_speed, launch_angle, direction, backspin, sidespin):
 
 
 def _acceleration(t, vel, spin, spin_rate, c0, radius, aero: Aerodynamics):
-    speed = np.linalg.norm(vel, axis=-1)
+    speed = np.sqrt(np.einsum("ij,ij->i", vel, vel))
     decay = np.exp(-t * speed / (aero.spin_decay_time * aero.spin_decay_speed))
     s = radius * spin_rate * decay / speed
     cl = aero.cl2 * s / (aero.cl0 + aero.cl1 * s)
     cd = aero.cd0 + aero.cd_spin * (spin_rate / (1000 * RPM)) * decay
-    axis = spin / np.where(spin_rate > 0, spin_rate, 1.0)[:, None]
-    a = (-c0 * cd * speed)[:, None] * vel + (c0 * cl * speed)[:, None] * np.cross(axis, vel)
-    a[:, 2] -= GRAVITY
+    lift = c0 * cl * speed / np.where(spin_rate > 0, spin_rate, 1.0)
+    drag = -c0 * cd * speed
+    wx, wy, wz = spin[:, 0], spin[:, 1], spin[:, 2]
+    vx, vy, vz = vel[:, 0], vel[:, 1], vel[:, 2]
+    a = np.empty_like(vel)  # drag along -v, lift along (w x v), gravity
+    a[:, 0] = drag * vx + lift * (wy * vz - wz * vy)
+    a[:, 1] = drag * vy + lift * (wz * vx - wx * vz)
+    a[:, 2] = drag * vz + lift * (wx * vy - wy * vx) - GRAVITY
     return a
 
 
@@ -216,7 +242,7 @@ def _touchdown(p0, v0, p1, v1, h):
     """Time into the step [s] and ground point (x, y) where the cubic Hermite through the
     step's end states reaches z = 0 (bisection on the cubic: the step brackets the root)."""
     lo, hi = np.zeros(len(p0)), np.full(len(p0), h)
-    for _ in range(40):
+    for _ in range(30):  # h / 2^30: well under a nanosecond
         mid = (lo + hi) / 2
         z = _hermite(p0[:, 2], v0[:, 2], p1[:, 2], v1[:, 2], h, mid)
         above = z > 0

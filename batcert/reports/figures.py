@@ -157,4 +157,8 @@ def figures_of(result) -> list[Figure]:
     if isinstance(result, ComparisonResult):
         from batcert.reports.compare_view import comparison_figures
         return comparison_figures(result)
+    from batcert.results.field import FieldResult
+    if isinstance(result, FieldResult):
+        from batcert.reports.field_view import field_figures
+        return field_figures(result)
     return []  # a league report has no figures

@@ -15,6 +15,7 @@ if TYPE_CHECKING:
     from markupsafe import Markup
 
     from batcert.results.compare import ComparisonResult
+    from batcert.results.field import FieldResult
     from batcert.results.lab import LabResult
     from batcert.results.league import LeagueResult
     from batcert.results.run import RunResult
@@ -108,6 +109,12 @@ def comparison_html(result: ComparisonResult) -> str:
     """A comparison of bats as one styled HTML5 page."""
     from batcert.reports.compare_view import comparison_view
     return render_template("compare.html.j2", comparison_view(result), FILTERS)
+
+
+def field_html(result: FieldResult) -> str:
+    """An in-play prediction as one styled HTML5 page."""
+    from batcert.reports.field_view import field_view
+    return render_template("field.html.j2", field_view(result), FILTERS)
 
 
 def league_html(result: LeagueResult) -> str:

@@ -11,6 +11,7 @@ from batcert.units import Display
 
 if TYPE_CHECKING:
     from batcert.results.compare import ComparisonResult
+    from batcert.results.field import FieldResult
     from batcert.results.lab import LabResult
     from batcert.results.league import LeagueResult
     from batcert.results.run import RunResult
@@ -61,6 +62,11 @@ def run_markdown(result: RunResult) -> str:
 def comparison_markdown(result: ComparisonResult) -> str:
     from batcert.reports.compare_view import comparison_view
     return render_template("compare.md.j2", comparison_view(result, charts=False), FILTERS)
+
+
+def field_markdown(result: FieldResult) -> str:
+    from batcert.reports.field_view import field_view
+    return render_template("field.md.j2", field_view(result, charts=False), FILTERS)
 
 
 def league_markdown(result: LeagueResult) -> str:

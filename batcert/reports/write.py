@@ -94,6 +94,13 @@ def variants_stem(protocol: str, parameters: Sequence[str], bat_path: str,
                  Path(bat_path).stem)
 
 
+def field_stem(result: Any) -> str:
+    """``field--<batter ids>--<bats' file stems>``."""
+    bats = result.batters[0].bats if result.batters else []
+    return _stem("field", "+".join(b.batter for b in result.batters),
+                 "+".join(Path(b.path).stem for b in bats))
+
+
 def lab_stem(result: Any) -> str:
     """``lab--<protocol>--<session file stem>``."""
     return _stem("lab", result.protocol, Path(result.session_path).stem)
@@ -121,6 +128,8 @@ _KINDS: dict[str, ReportKind] = {
                                lambda r: _html().league_html(r)),
     "SweepResult": ReportKind(sweep_stem, lambda r: _markdown().sweep_markdown(r),
                               lambda r: _html().sweep_html(r)),
+    "FieldResult": ReportKind(field_stem, lambda r: _markdown().field_markdown(r),
+                              lambda r: _html().field_html(r)),
     "LabResult": ReportKind(lab_stem, lambda r: _markdown().lab_markdown(r),
                             lambda r: _html().lab_html(r)),
 }

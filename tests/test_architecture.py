@@ -42,10 +42,10 @@ ALLOWED = {
     "uncertainty": {"units", "errors", "conventions", "physics", "methods", "engines",
                     "specs", "model", "results", "runner", "version"},
     # in play: a batter's swing of a free bat along the barrel, and the batted ball's flight
-    "field": {"units", "errors", "conventions", "physics", "methods", "engines", "specs", "model",
+    "inplay": {"units", "errors", "conventions", "physics", "methods", "engines", "specs", "model",
               "results", "runner", "version"},
     "commands": {"units", "errors", "conventions", "physics", "engines", "specs", "model",
-                 "results", "runner", "analysis", "sweeps", "lab", "uncertainty", "field",
+                 "results", "runner", "analysis", "sweeps", "lab", "uncertainty", "inplay",
                  "version"},
     "console": {"units", "reports", "results", "version"},
     # the library: the commands' functions and the cache it keeps, typed results

@@ -6,12 +6,13 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from pathlib import Path
 
 from batcert.commands.inputs import BatterInputs, load_bats, load_batter_any, same_file
 from batcert.engines import get_engine
 from batcert.errors import UsageProblem
-from batcert.field.barrel import WINDOW_FROM_TIP
-from batcert.field.evaluate import Launch, evaluate_batter
+from batcert.inplay.barrel import WINDOW_FROM_TIP
+from batcert.inplay.evaluate import Launch, evaluate_batter
 from batcert.physics.trajectory import RPM, air_density, default_spin
 from batcert.results.field import FieldResult
 from batcert.results.serialise import utc_now
@@ -80,14 +81,21 @@ def run_field(bats: Sequence[str], batters: Sequence[str] = (), reference: str |
     if not bats:
         raise UsageProblem("give at least one bat (a shipped name such as aluminium-34, or a "
                            "bat YAML path)")
-    loaded = load_bats(list(bats))
+    loaded = []
+    for b in load_bats(list(bats)):  # a bat given twice is swung once
+        if not any(same_file(b.path, kept.path) for kept in loaded):
+            loaded.append(b)
     ref_name = reference or DEFAULT_REFERENCE
     [ref] = load_bats([ref_name])
     at = next((i for i, b in enumerate(loaded) if same_file(b.path, ref.path)), None)
     if at is None:
         loaded.append(ref)
         at = len(loaded) - 1
-    profiles = [load_batter_any(name) for name in batter_names(batters)]
+    profiles: list[BatterInputs] = []
+    for name in batter_names(batters):  # a profile named twice (or by its path) runs once
+        p = load_batter_any(name)
+        if not any(same_file(Path(p.batter.path), Path(q.batter.path)) for q in profiles):
+            profiles.append(p)
     if settings.pitch_speed is not None:
         profiles = [replace(p, batter=replace(p.batter, pitch_speed=settings.pitch_speed))
                     for p in profiles]

@@ -15,7 +15,7 @@ from batcert.units import Display
 
 MPH, FT, INCH = 0.44704, 0.3048, 0.0254
 OZ_IN2 = 0.028349523125 * INCH**2
-# the scenarios whose spread a gain's range shows (batcert.field.evaluate.RANGE_SCENARIOS)
+# the scenarios whose spread a gain's range shows (batcert.inplay.evaluate.RANGE_SCENARIOS)
 RANGE = ("nominal", "exponent-low", "exponent-high", "bat-speed-low", "bat-speed-high")
 PREDICTION = ("Model prediction from the bat, ball and batter files (swing law, impact engine, "
               "trajectory), not a measurement.")

@@ -44,12 +44,15 @@ def test_quiet_prints_only_the_verdict(batcert_cli, tmp_path):
 
 def test_list_every_kind(batcert_cli):
     data = {k["kind"]: k["entries"] for k in results(batcert_cli("list", "--json").stdout, "list")}
-    assert set(data) == {"bats", "balls", "protocols", "leagues", "studies"}
+    assert set(data) == {"bats", "balls", "protocols", "leagues", "studies", "batters"}
     names = {k: [i["name"] for i in v] for k, v in data.items()}
     assert "ash-34" in names["bats"] and "collegiate-baseball" in names["balls"]
     assert "ncaa-bbcor" in names["protocols"] and "ncaa" in names["leagues"]
     assert names["studies"] == ["smith2001"]  # a study's protocols are not studies
+    assert names["batters"] == ["college", "fastpitch", "high-school", "pro", "slowpitch",
+                                "youth-12u"]
     assert "ash-34" in batcert_cli("list", "bats").stdout
+    assert "Professional (MLB)" in batcert_cli("list", "batters").stdout
 
 
 def _complete(words: str) -> list[str]:
@@ -64,6 +67,7 @@ def test_completion_offers_shipped_names():
     assert "ncaa-bbcor" in _complete("batcert run ash-34 -p ncaa-b")
     assert _complete("batcert compare --study ") == ["smith2001"]
     assert "ncaa" in _complete("batcert league nc")
+    assert _complete("batcert field ash-34 --batter p") == ["pro"]
 
 
 def test_completion_scripts_exist_for_every_shell():

@@ -20,6 +20,7 @@ COMMANDS = {
     "run": (["run", "ash-34", "-p", "ncaa-bbcor", "-p", "proposed", *RIGID], "run", 2),
     "compare": (["compare", "ash-34", "aluminium-34", "-p", "ncaa-bbcor", *RIGID], "comparison", 1),
     "league": (["league", "mlb", "ash-34", *RIGID], "league", 1),
+    "field": (["field", "aluminium-34", "--batter", "pro", *RIGID], "field", 1),
     "sweep": (["sweep", "ash-34", "-p", "ncaa-bbcor", "--vary", "pitch_speed=50m/s:60m/s:2",
                *RIGID], "sweep", 1),
     "design": (["design", "ash-34", "-p", "ncaa-bbcor", "--solve", "pitch_speed", "--range",
@@ -28,7 +29,7 @@ COMMANDS = {
     "inspect": (["inspect", "ash-34"], None, 1),
     "validate": (["validate", "ash-34", "ncaa-bbcor"], None, 2),
     "protocols": (["protocols"], None, 10),
-    "list": (["list"], None, 5),
+    "list": (["list"], None, 6),  # bats, balls, protocols, leagues, studies, batters
 }
 
 

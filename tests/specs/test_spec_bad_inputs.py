@@ -1,6 +1,7 @@
 """Bad input: one fixture per error message (tests/fixtures/bad/).
 
-Each fixture must make both ``batcert validate`` and ``batcert run`` exit with code 3, name the
+Each fixture must make both ``batcert validate`` and ``batcert run`` (``batcert field`` for a
+batter file) exit with code 3, name the
 file, line and field of every problem (``file:line: field: message``), and write nothing to the
 ``--out`` directory.
 """
@@ -159,6 +160,28 @@ CASES: dict[str, list[Expect]] = {
     "ball-speeds-not-increasing.yaml": [
         Expect(7, "cor[1]", "impact speeds must increase; 10 m/s follows 50 m/s"),
     ],
+    # --- batter files (batcert field)
+    "batter-misspelt-key.yaml": [
+        Expect(3, "descripton", "unknown field; did you mean 'description'?"),
+    ],
+    "batter-missing-bat-speed.yaml": [Expect(8, "swing.bat_speed", "required field is missing")],
+    "batter-exponent-above-1.yaml": [
+        Expect(11, "swing.exponent", "must be at most 1, got 1.25"),
+    ],
+    "batter-bat-speed-without-unit.yaml": [
+        Expect(8, "swing.bat_speed", "a unit is required (e.g. '70 mph'), got the bare number 65"),
+    ],
+    "batter-station-near-axis.yaml": [
+        Expect(9, "swing.speed_from_tip", "the station where the bat speed is measured must lie "
+                                          "more than 5 cm from the swing axis"),
+    ],
+    "batter-unknown-ball.yaml": [
+        Expect(4, "ball", "unknown ball 'colegiate-baseball' (shipped: collegiate-baseball, "
+                          "nathan-2000, softball-11in-44-375, softball-fastpitch-47-375, "
+                          "softball-ncaa-47-350, softball-slowpitch-44-375, "
+                          "softball-slowpitch-52-300, softball-test-52-275); did you mean "
+                          "'collegiate-baseball'?"),
+    ],
 }
 
 
@@ -167,7 +190,10 @@ def test_every_fixture_has_a_case():
 
 
 def _run_args(name: str, path: Path, tmp_path: Path) -> list[str]:
-    """`batcert run` arguments that load the bad file: as the bat, the protocol or the ball."""
+    """`batcert run` arguments that load the bad file: as the bat, the protocol or the ball
+    (`batcert field` arguments for a batter file)."""
+    if name.startswith("batter-"):
+        return ["field", "ash-34", "--batter", str(path)]
     if name.startswith("protocol-"):
         return ["run", "ash-34", "--protocol", str(path)]
     if name.startswith("ball-"):

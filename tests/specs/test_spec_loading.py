@@ -38,7 +38,7 @@ def test_unknown_shipped_name_suggests():
 
 
 def test_every_shipped_file_validates(repo_root, batcert_cli):
-    files = [f for d in ("bats", "protocols", "protocols/balls")
+    files = [f for d in ("bats", "protocols", "protocols/balls", "protocols/batters")
              for f in sorted((repo_root / d).glob("*.yaml"))]
     result = batcert_cli("validate", *files)
     assert result.exit_code == 0, result.stderr
@@ -133,6 +133,30 @@ def test_cor_interpolation_rule(repo_root):
     assert np.all(single.cor(np.array([1.0, 58.0, 100.0])) == 0.53)
 
 
+def test_batter_values_and_defaults(fixtures_dir):
+    from batcert.commands.inputs import batter_inputs
+    loaded = batter_inputs(fixtures_dir / "good" / "batter.yaml")
+    b, law = loaded.batter, loaded.batter.swing
+    assert b.id == "batter" and b.body == "baseball" and loaded.ball.name == "Collegiate baseball"
+    assert b.pitch_speed == pytest.approx(85 * MPH)
+    assert float(law.bat_speed) == pytest.approx(65 * MPH)
+    assert law.bat_speed_uncertainty == pytest.approx(2 * MPH)
+    assert law.reference_moi == pytest.approx(18900 * OZ * IN**2)
+    # defaults: measured 6 in from the tip, about the knob, no stated spread of n
+    assert (law.speed_from_tip, law.axis_from_knob, law.exponent_uncertainty) == (
+        pytest.approx(6 * IN), 0.0, 0.0)
+    assert law.reference_angular_speed == pytest.approx(65 * MPH / (28 * IN))
+
+
+def test_batter_ball_path_relative_to_batter(tmp_path, fixtures_dir):
+    from batcert.commands.inputs import load_batter_any
+    (tmp_path / "my-ball.yaml").write_text((fixtures_dir / "good" / "ball.yaml").read_text())
+    text = (fixtures_dir / "good" / "batter.yaml").read_text()
+    (tmp_path / "mine.yaml").write_text(text.replace("ball: collegiate-baseball",
+                                                     "ball: my-ball.yaml"))
+    assert load_batter_any(str(tmp_path / "mine.yaml")).ball.name == "Test ball"
+
+
 def test_protocol_ball_path_relative_to_protocol(tmp_path, fixtures_dir):
     (tmp_path / "my-ball.yaml").write_text((fixtures_dir / "good" / "ball.yaml").read_text())
     proto = tmp_path / "mine.yaml"
@@ -144,7 +168,8 @@ def test_protocol_ball_path_relative_to_protocol(tmp_path, fixtures_dir):
     assert inputs.protocol.conditions[0].stationary == "ball"
 
 
-@pytest.mark.parametrize("name, kind", [("good/solid-bat.yaml", "bat"), ("good/ball.yaml", "ball")])
+@pytest.mark.parametrize("name, kind", [("good/solid-bat.yaml", "bat"), ("good/ball.yaml", "ball"),
+                                        ("good/batter.yaml", "batter")])
 def test_detect_kind(fixtures_dir, name, kind):
     assert detect_kind(str(fixtures_dir / name)) == kind
 

@@ -8,7 +8,7 @@ import math
 import pytest
 
 from batcert.commands.field import FieldSettings, run_field
-from batcert.field.evaluate import SCENARIOS
+from batcert.inplay.evaluate import SCENARIOS
 
 MPH, FT = 0.44704, 0.3048
 

@@ -8,7 +8,7 @@ import pytest
 
 from batcert.engines import get_engine
 from batcert.engines.base import ImpactBatch, Job
-from batcert.field.barrel import barrel_grid, sweet_zone
+from batcert.inplay.barrel import barrel_grid, sweet_zone
 
 MPH, INCH = 0.44704, 0.0254
 

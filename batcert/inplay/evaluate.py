@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from batcert.engines.base import Engine
-from batcert.field.barrel import Swung, barrel_grid, sweet_zone, swing_barrels
+from batcert.inplay.barrel import Swung, barrel_grid, sweet_zone, swing_barrels
 from batcert.model.build import BuiltBat
 from batcert.physics.swing import swing_speed
 from batcert.physics.trajectory import Baseball, fly
@@ -48,7 +48,8 @@ SCENARIOS: dict[str, Scenario] = {s.name: s for s in (
     Scenario("bat-speed-high", "the profile's bat speed one standard uncertainty higher",
              speed_sigma=1.0),
     Scenario("constant-swing", "n = 0: every bat swung at the profile's rate whatever its "
-             "MOI (what a lab test at one bat speed assumes)", constant=True),
+             "MOI (for bats of one length, what a lab test at one bat speed assumes)",
+             constant=True),
     Scenario("plus-1mph-bat", "nominal, swung 1 mph faster at the profile's station",
              bat_speed_step=MPH),
     Scenario("plus-1mph-pitch", "nominal, pitched 1 mph faster", pitch_step=MPH),

@@ -38,8 +38,9 @@ HEADER = """\
 batcert reads three kinds of YAML file for a test: a **bat**, a **protocol** (the test method)
 and a **ball** (named by the protocol); and, for other commands, **league**, **study** and
 **batter** files (`batcert field`). The shipped ones live in `bats/`, `protocols/`,
-`protocols/balls/`, `protocols/leagues/`, `protocols/studies/` and `protocols/batters/` and can
-be named without a path (`--protocol proposed`, `inspect ash-34`); any other argument is a path. Check files with `batcert validate FILE...` before a run.
+`protocols/balls/`, `protocols/leagues/`, `protocols/studies/` and `protocols/batters/` and
+can be named without a path (`--protocol proposed`, `inspect ash-34`); any other argument is a
+path. Check files with `batcert validate FILE...` before a run.
 Names of quantities follow [nomenclature.md](nomenclature.md).
 
 ## Conventions

@@ -1,15 +1,28 @@
 """Wall times of short Python programs, each a fresh process, run in turns and compared with
 ``python -c "import numpy"`` (the benchmarks' yardstick): the measuring loop of
-bench_exit.py and bench_laminate.py."""
+bench_exit.py and bench_laminate.py; and the installed ``batcert`` command that the command
+benchmarks time (bench_cli.py, bench_field.py, bench_uncertainty.py)."""
 
 from __future__ import annotations
 
+import shutil
 import statistics
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 BASELINE = "numpy import (baseline)"
+
+
+def installed_batcert() -> tuple[str, str]:
+    """The ``batcert`` on PATH and the Python it is installed in (this one if none beside it);
+    exits with a message when batcert is not installed."""
+    exe = shutil.which("batcert")
+    if exe is None:
+        raise SystemExit("no `batcert` on PATH: install the package first (pip install .)")
+    python = Path(exe).with_name("python")
+    return exe, str(python) if python.exists() else sys.executable
 
 
 def median_times(cases: dict[str, str], repeat: int) -> dict[str, float]:

@@ -19,13 +19,13 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import shutil
 import statistics
 import subprocess
-import sys
 import tempfile
 import time
 from pathlib import Path
+
+from alternating import installed_batcert
 
 COMMANDS = {
     "run ash-34 proposed": ["run", "ash-34", "--protocol", "proposed"],
@@ -63,11 +63,7 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=7)
     parser.add_argument("--json", type=Path, help="write the figures to this file")
     args = parser.parse_args()
-    exe = shutil.which("batcert")
-    if exe is None:
-        raise SystemExit("no `batcert` on PATH: install the package first (pip install .)")
-    python = str(Path(exe).with_name("python")) if Path(exe).with_name("python").exists() \
-        else sys.executable
+    exe, python = installed_batcert()
     figures: dict[str, dict[str, float]] = {}
     studies = subprocess.run(
         [python, "-c", "from batcert.specs.resolve import resolve; "

@@ -15,13 +15,13 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import shutil
 import statistics
 import subprocess
-import sys
 import tempfile
 import time
 from pathlib import Path
+
+from alternating import installed_batcert
 
 TARGET = 1.0  # [s], warm, each bat and profile
 
@@ -46,11 +46,7 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=1)
     parser.add_argument("--json", type=Path, help="write the figures to this file")
     args = parser.parse_args()
-    exe = shutil.which("batcert")
-    if exe is None:
-        raise SystemExit("no `batcert` on PATH: install the package first (pip install .)")
-    python = str(Path(exe).with_name("python")) if Path(exe).with_name("python").exists() \
-        else sys.executable
+    exe, python = installed_batcert()
     bats, batters = shipped(python, "bat"), shipped(python, "batter")
     times: dict[str, list[float]] = {}
     base: list[float] = []

@@ -12,12 +12,13 @@ from __future__ import annotations
 
 import argparse
 import json
-import shutil
 import statistics
 import subprocess
 import tempfile
 import time
 from pathlib import Path
+
+from alternating import installed_batcert
 
 BATS = ("ash-34", "aluminium-34", "bbcor-alloy-34", "r161")
 TARGET_S = 5.0
@@ -29,9 +30,7 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--json", type=Path, help="write the figures to this file")
     args = parser.parse_args()
-    exe = shutil.which("batcert")
-    if exe is None:
-        raise SystemExit("no `batcert` on PATH: install the package first (pip install .)")
+    exe, _ = installed_batcert()
     figures: dict[str, dict[str, float]] = {}
     with tempfile.TemporaryDirectory() as tmp:
         for bat in BATS:

@@ -119,11 +119,11 @@ def field(bats: str | Path | Sequence[str | Path], batters: str | Sequence[str] 
     import math
 
     from batcert.commands.field import FieldSettings, run_field
+    from batcert.physics.trajectory import RPM
     _ready()
-    rpm = math.pi / 30
     settings = FieldSettings(math.radians(launch_angle),
-                             None if backspin is None else backspin * rpm,
-                             None if sidespin is None else sidespin * rpm, temperature,
+                             None if backspin is None else backspin * RPM,
+                             None if sidespin is None else sidespin * RPM, temperature,
                              elevation, pitch_speed=pitch_speed)
     bat_list = [bats] if isinstance(bats, (str, Path)) else list(bats)
     batter_list = [batters] if isinstance(batters, str) else list(batters)

@@ -166,10 +166,12 @@ def registry():
     return ureg
 
 
-def parse_quantity(value: object, dimension: str) -> float:
+def parse_quantity(value: object, dimension: str, largest: float | None = None) -> float:
     """Convert ``value`` (e.g. ``"34 in"``) to a float in the SI unit of ``dimension``.
 
-    Bare numbers are refused for dimensioned quantities: a lab file must say its unit.
+    Bare numbers are refused for dimensioned quantities: a lab file must say its unit. A value
+    larger in size than :data:`PLAUSIBLE` (or than ``largest`` [SI], for a quantity that is not
+    a bat's or a ball's, such as a field's elevation) is refused.
     """
     dim_text, si_unit, _, example = DIMENSIONS[dimension]
     if isinstance(value, bool) or value is None:
@@ -189,7 +191,7 @@ def parse_quantity(value: object, dimension: str) -> float:
         raise UnitError(f"a unit is required (e.g. '{example}'), got {value!r}")
     fast = FAST_UNITS.get(dimension, {}).get(unit_text.replace(" ", ""))
     if fast is not None:  # the units of the shipped files, without starting pint (~0.4 s)
-        return _plausible(number * fast, value, dimension)
+        return _plausible(number * fast, value, dimension, largest)
     import pint
 
     ureg = registry()
@@ -214,7 +216,7 @@ def parse_quantity(value: object, dimension: str) -> float:
         raise UnitError(f"cannot read {value!r}: not a unit that converts to {si_unit} "
                         f"(e.g. '{example}')") from None
     _check_angle(value, unit, dimension, example)
-    return _plausible(si, value, dimension)
+    return _plausible(si, value, dimension, largest)
 
 
 def _check_spelling(value: str, unit_text: str, ureg, example: str) -> None:
@@ -238,9 +240,10 @@ def _check_spelling(value: str, unit_text: str, ureg, example: str) -> None:
             raise UnitError(f"cannot read {value!r}: unknown unit {word!r} (e.g. '{example}')")
 
 
-def _plausible(si: float, value: str, dimension: str) -> float:
-    """``si`` if it is finite and within :data:`PLAUSIBLE`; otherwise a :class:`UnitError`."""
-    bound = PLAUSIBLE[dimension]
+def _plausible(si: float, value: str, dimension: str, largest: float | None = None) -> float:
+    """``si`` if it is finite and within :data:`PLAUSIBLE` (or ``largest``); otherwise a
+    :class:`UnitError`."""
+    bound = PLAUSIBLE[dimension] if largest is None else largest
     if not math.isfinite(si) or abs(si) > bound:
         raise UnitError(f"{value!r} is outside the range accepted for a "
                         f"{dimension.replace('_', ' ')} (at most {bound:g} {DIMENSIONS[dimension][1]} "

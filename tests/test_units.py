@@ -107,3 +107,13 @@ def test_a_word_pint_parses_but_cannot_name_is_an_unknown_unit():
     from batcert.units import UnitError, parse_quantity
     with pytest.raises(UnitError, match="unknown unit 'per'"):
         parse_quantity("3 furlongs per fortnight", "speed")
+
+
+def test_a_caller_may_widen_the_plausible_size():
+    """A field's elevation is no bat length: 5280 ft is refused as a length (10 m at most) but
+    read with the caller's own bound, and that bound still refuses what lies beyond it."""
+    with pytest.raises(UnitError, match="at most 10 m"):
+        parse_quantity("5280 ft", "length")
+    assert parse_quantity("5280 ft", "length", largest=5000.0) == pytest.approx(1609.344)
+    with pytest.raises(UnitError, match="at most 5000 m"):
+        parse_quantity("6 km", "length", largest=5000.0)

@@ -33,36 +33,20 @@ _TEMPERATURE = {"f": lambda t: (t - 32) * 5 / 9 + 273.15, "c": lambda t: t + 273
 
 
 def _quantity(dimension: str, lo: float, hi: float):
-    """A click callback reading ``85 mph`` / ``5280 ft`` into SI, within [lo, hi]."""
+    """A click callback reading ``85 mph`` / ``5280 ft`` into SI, within [lo, hi] (which may
+    lie beyond what a bat's quantities take: a field's elevation)."""
     def read(ctx, param, value):
         if value is None:
             return None
         from batcert.units import UnitError, parse_quantity
         try:
-            v = parse_quantity(value, dimension)
+            v = parse_quantity(value, dimension, largest=max(abs(lo), abs(hi)))
         except UnitError as exc:
             raise click.BadParameter(str(exc)) from None
         if not lo <= v <= hi:
-            raise click.BadParameter(f"{value} is outside the range this command takes")
+            raise click.BadParameter(f"{value} is outside {lo:g} to {hi:g} (SI)")
         return v
     return read
-
-
-def _elevation(ctx, param, value):
-    """``5280 ft``, ``1600 m``: a field's elevation (beyond the 10 m a bat's lengths may take)."""
-    import re
-
-    from batcert.units import UnitError, parse_quantity
-    m = re.fullmatch(r"\s*([-+]?\d+(?:\.\d*)?|[-+]?\.\d+)\s*([a-zA-Z]+)\s*", value)
-    try:
-        if m is None:
-            raise UnitError(f"cannot read {value!r}: give a number and a unit, e.g. 5280ft")
-        metres = float(m.group(1)) * parse_quantity(f"1 {m.group(2)}", "length")
-    except UnitError as exc:
-        raise click.BadParameter(str(exc)) from None
-    if not -500.0 <= metres <= 5000.0:
-        raise click.BadParameter(f"{value} is outside -500 to 5000 m")
-    return metres
 
 
 def _temperature(ctx, param, value):
@@ -102,7 +86,7 @@ Examples:
 @click.option("--sidespin", default=None, type=click.FloatRange(-5000.0, 5000.0),
               help="Sidespin [rpm] [default: the calculator's, -849 rpm].")
 @click.option("--elevation", default="0 ft", show_default=True,
-              callback=_elevation, help="Field elevation.")
+              callback=_quantity("length", -500.0, 5000.0), help="Field elevation.")
 @click.option("--temperature", default="70F", show_default=True, callback=_temperature,
               help="Air temperature (F, C or K).")
 @_output_options("in-play prediction")

@@ -17,10 +17,10 @@ from batcert.engines.base import Engine, ImpactBatch, Job
 from batcert.model.build import BuiltBat
 from batcert.physics.ball import BallModel
 from batcert.runner.locate import parabolic_peak
+from batcert.units import INCH, MPH
 
 __all__ = ["BarrelSweep", "Swung", "SweetZone", "barrel_grid", "sweet_zone", "swing_barrels"]
 
-INCH = 0.0254
 WINDOW_FROM_TIP = (0.5 * INCH, 12.0 * INCH)  # impact locations searched [m from the tip]
 POINTS = 47  # a quarter inch apart
 
@@ -116,7 +116,7 @@ def _parabola_value(x: np.ndarray, y: np.ndarray, index: np.ndarray, at: np.ndar
 
 
 def sweet_zone(from_tip: np.ndarray, exit_speed: np.ndarray,
-               drops: tuple[float, float] = (1.0 * 0.44704, 5.0 * 0.44704)) -> SweetZone:
+               drops: tuple[float, float] = (1.0 * MPH, 5.0 * MPH)) -> SweetZone:
     """The best exit speed of each row of ``exit_speed`` (n, n_loc) along ``from_tip`` [m]
     (parabola through the best three samples) and the length of the contiguous barrel around it
     where the speed stays within each of ``drops`` [m/s] (default 1 and 5 mph) of the best."""

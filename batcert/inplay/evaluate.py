@@ -20,10 +20,9 @@ from batcert.physics.trajectory import Baseball, fly
 from batcert.results.field import BarrelCurve, FieldBat, FieldBatter, FieldOutcome
 from batcert.specs.ball import BallSpec
 from batcert.specs.batter import BatterSpec
+from batcert.units import MPH
 
 __all__ = ["SCENARIOS", "Launch", "Scenario", "evaluate_batter"]
-
-MPH = 0.44704  # [m/s]
 
 
 @dataclass(frozen=True)
@@ -54,8 +53,6 @@ SCENARIOS: dict[str, Scenario] = {s.name: s for s in (
              bat_speed_step=MPH),
     Scenario("plus-1mph-pitch", "nominal, pitched 1 mph faster", pitch_step=MPH),
 )}
-# the scenarios whose spread is the range a gain is given with
-RANGE_SCENARIOS = ("exponent-low", "exponent-high", "bat-speed-low", "bat-speed-high")
 
 
 @dataclass(frozen=True)
@@ -72,11 +69,10 @@ def angular_speeds(batter: BatterSpec, moi_axis: float, station: float) -> np.nd
     """The bat's swing rate about the axis [rad/s] under each scenario of :data:`SCENARIOS`;
     ``station``: the distance from the axis of the profile's measuring point on this bat [m]."""
     law = batter.swing
-    arm = law.reference_length - law.speed_from_tip - law.axis_from_knob
     out = []
     for s in SCENARIOS.values():
         v_ref = float(law.bat_speed) + s.speed_sigma * law.bat_speed_uncertainty
-        w = float(swing_speed(moi_axis, v_ref / arm, law.reference_moi, _exponent(law, s)))
+        w = float(swing_speed(moi_axis, v_ref / law.station_radius, law.reference_moi, _exponent(law, s)))
         out.append(w + s.bat_speed_step / station)
     return np.array(out)
 

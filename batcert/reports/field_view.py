@@ -10,31 +10,25 @@ from batcert.reports import format as fmt
 from batcert.reports.figure import Figure, LineFigure
 from batcert.reports.svg import Series
 from batcert.reports.table import Table
-from batcert.results.field import FieldBat, FieldBatter, FieldResult
-from batcert.units import Display
+from batcert.results.field import RANGE_SCENARIOS, FieldBat, FieldBatter, FieldResult
+from batcert.units import FOOT as FT
+from batcert.units import INCH, MPH, OUNCE, Display
 
-MPH, FT, INCH = 0.44704, 0.3048, 0.0254
-OZ_IN2 = 0.028349523125 * INCH**2
-# the scenarios whose spread a gain's range shows (batcert.inplay.evaluate.RANGE_SCENARIOS)
-RANGE = ("nominal", "exponent-low", "exponent-high", "bat-speed-low", "bat-speed-high")
+OZ_IN2 = OUNCE * INCH**2
 PREDICTION = ("Model prediction from the bat, ball and batter files (swing law, impact engine, "
               "trajectory), not a measurement.")
 
 
-def speed(v: float, digits: int = 1) -> Display:
-    return Display(f"{v:.{digits}f} m/s", f"{v / MPH:.{digits}f} mph")
-
-
-def gain_speed(v: float) -> Display:
-    return Display(f"{v:+.2f} m/s", f"{v / MPH:+.1f} mph")
+def gain_speed(v: float) -> str:
+    return f"{v / MPH:+.1f} mph"
 
 
 def distance(d: float) -> Display:
     return Display(f"{d:.1f} m", f"{d / FT:.0f} ft")
 
 
-def gain_distance(d: float) -> Display:
-    return Display(f"{d:+.1f} m", f"{d / FT:+.0f} ft")
+def gain_distance(d: float) -> str:
+    return f"{d / FT:+.0f} ft"
 
 
 def inches(x: float) -> Display:
@@ -42,9 +36,8 @@ def inches(x: float) -> Display:
 
 
 def _range(b: FieldBat, field: str, show) -> str:
-    values = [getattr(b.outcome(s), field) for s in RANGE]
-    lo, hi = show(min(values)), show(max(values))
-    return f"{lo.us} to {hi.us}"
+    values = [getattr(b.outcome(s), field) for s in RANGE_SCENARIOS]
+    return f"{show(min(values))} to {show(max(values))}"
 
 
 def _nominal_table(fb: FieldBatter) -> Table:
@@ -58,13 +51,13 @@ def _nominal_table(fb: FieldBatter) -> Table:
         if o.zone_open:
             zone5 = Display("\u2265 " + zone5.si, "\u2265 " + str(zone5.us))
         gain = ("reference" if b.is_reference else
-                f"{gain_speed(o.gain_exit_speed).us}, {gain_distance(o.gain_distance).us}")
+                f"{gain_speed(o.gain_exit_speed)}, {gain_distance(o.gain_distance)}")
         spread = ("" if b.is_reference else
                   f"{_range(b, 'gain_exit_speed', gain_speed)}; "
                   f"{_range(b, 'gain_distance', gain_distance)}")
         t.rows.append([b.bat, Display(f"{b.moi_axis:.4f} kg m^2", f"{b.moi_axis / OZ_IN2:,.0f} "
                                       "oz in^2"),
-                       speed(o.swing_speed), speed(o.best_exit_speed),
+                       fmt.quantity(o.swing_speed, "speed", 1), fmt.quantity(o.best_exit_speed, "speed", 1),
                        inches(o.sweet_spot), inches(o.sweet_zone_1mph), zone5,
                        fmt.plain(o.collision_efficiency, 3), distance(o.distance), gain, spread])
     return t
@@ -77,9 +70,9 @@ def _constant_table(fb: FieldBatter) -> Table:
         for s in ("constant-swing", "nominal"):
             o = b.outcome(s)
             gain = ("reference" if b.is_reference else
-                    f"{gain_speed(o.gain_exit_speed).us}, {gain_distance(o.gain_distance).us}")
-            t.rows.append([b.bat, f"n = {o.exponent:.2f}", speed(o.swing_speed),
-                           speed(o.best_exit_speed), distance(o.distance), gain])
+                    f"{gain_speed(o.gain_exit_speed)}, {gain_distance(o.gain_distance)}")
+            t.rows.append([b.bat, f"n = {o.exponent:.2f}", fmt.quantity(o.swing_speed, "speed", 1),
+                           fmt.quantity(o.best_exit_speed, "speed", 1), distance(o.distance), gain])
     return t
 
 

@@ -11,6 +11,10 @@ from dataclasses import dataclass, field
 
 from batcert.results.serialise import Serialisable
 
+# the scenarios (batcert.inplay.evaluate.SCENARIOS) over which a gain's range is given: the
+# swing law's exponent and bat speed one standard uncertainty either way, and the nominal law
+RANGE_SCENARIOS = ("nominal", "exponent-low", "exponent-high", "bat-speed-low", "bat-speed-high")
+
 
 @dataclass
 class FieldOutcome:

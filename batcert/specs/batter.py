@@ -69,10 +69,10 @@ class SwingLawSpec:
     source: str
 
     @property
-    def reference_angular_speed(self) -> float:
-        """``w_ref``: the bat speed over the station's distance from the axis [rad/s]."""
-        return float(self.bat_speed) / (self.reference_length - self.speed_from_tip
-                                        - self.axis_from_knob)
+    def station_radius(self) -> float:
+        """The measuring station's distance from the swing axis on the reference bat [m]: the
+        bat speed over it is the reference rate ``w_ref``."""
+        return self.reference_length - self.speed_from_tip - self.axis_from_knob
 
     @property
     def bat_speed_uncertainty(self) -> float:
@@ -113,7 +113,7 @@ def load_batter(path: str | Path) -> BatterSpec:
     data = load_yaml(path)
     v = load_checked(path, BATTER_SCHEMA, data)
     swing = spec_from(SwingLawSpec, v["swing"])
-    if swing.reference_length - swing.speed_from_tip - swing.axis_from_knob <= 0.05:
+    if swing.station_radius <= 0.05:
         raise Source.of(path, data).problem(
             "swing.speed_from_tip", "the station where the bat speed is measured must lie more "
             "than 5 cm from the swing axis (reference_length - speed_from_tip - axis_from_knob)")

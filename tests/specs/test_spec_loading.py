@@ -145,7 +145,7 @@ def test_batter_values_and_defaults(fixtures_dir):
     # defaults: measured 6 in from the tip, about the knob, no stated spread of n
     assert (law.speed_from_tip, law.axis_from_knob, law.exponent_uncertainty) == (
         pytest.approx(6 * IN), 0.0, 0.0)
-    assert law.reference_angular_speed == pytest.approx(65 * MPH / (28 * IN))
+    assert law.station_radius == pytest.approx(28 * IN)  # 34 in - 6 in from the tip
 
 
 def test_batter_ball_path_relative_to_batter(tmp_path, fixtures_dir):

@@ -16,7 +16,7 @@ from batcert.inplay.evaluate import Launch, evaluate_batter
 from batcert.physics.trajectory import RPM, air_density, default_spin
 from batcert.results.field import FieldResult
 from batcert.results.serialise import utc_now
-from batcert.specs.resolve import display_path, shipped_names
+from batcert.specs.resolve import display_path, resolve, shipped_names
 from batcert.version import __version__
 
 DEFAULT_REFERENCE = "ash-34"
@@ -81,16 +81,17 @@ def run_field(bats: Sequence[str], batters: Sequence[str] = (), reference: str |
     if not bats:
         raise UsageProblem("give at least one bat (a shipped name such as aluminium-34, or a "
                            "bat YAML path)")
-    loaded = []
-    for b in load_bats(list(bats)):  # a bat given twice is swung once
-        if not any(same_file(b.path, kept.path) for kept in loaded):
-            loaded.append(b)
-    ref_name = reference or DEFAULT_REFERENCE
-    [ref] = load_bats([ref_name])
-    at = next((i for i, b in enumerate(loaded) if same_file(b.path, ref.path)), None)
-    if at is None:
-        loaded.append(ref)
-        at = len(loaded) - 1
+    paths: list[Path] = []
+    for value in bats:  # a bat given twice, or also as the reference, is built and swung once
+        path = resolve("bat", value)
+        if not any(same_file(path, kept) for kept in paths):
+            paths.append(path)
+    ref_path = resolve("bat", reference or DEFAULT_REFERENCE)
+    at = next((i for i, path in enumerate(paths) if same_file(path, ref_path)), None)
+    if at is None:  # the reference is swung too, last
+        paths.append(ref_path)
+        at = len(paths) - 1
+    loaded = load_bats([str(path) for path in paths])
     profiles: list[BatterInputs] = []
     for name in batter_names(batters):  # a profile named twice (or by its path) runs once
         p = load_batter_any(name)

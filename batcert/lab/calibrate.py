@@ -20,6 +20,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from batcert.model.calibrate import BARREL_STIFFNESS_BOUNDS
+from batcert.numerics import brent_root
 
 
 @dataclass(frozen=True)
@@ -31,16 +32,24 @@ class BarrelFit:
     slope: float  # d metric / d scale at the root [-]
 
 
-def _model_metric(session, protocol, ball, engine, location: float, scale: float) -> float:
+def _model_metrics(session, protocol, ball, engine, location: float, scales) -> list[float]:
+    """The model's metric at ``location`` with the barrel stiffness scaled by each of
+    ``scales``, the bats solved together (one engine integration)."""
     from batcert.methods.metrics import METRICS
     from batcert.runner.bench import Bench
     from batcert.runner.conditions import conditions_from_spec
     built = session.built
-    model = replace(built.model, barrel_stiffness_scale=built.model.barrel_stiffness_scale * scale)
-    bench = Bench(replace(built, model=model), ball, engine, protocol.pivot, protocol.support)
-    conds = conditions_from_spec(protocol.conditions[:1], model, protocol.pivot)
-    metrics, _ = bench.solve(conds, np.array([[location]]))
-    return float(METRICS[protocol.metric].value(metrics)[0, 0])
+    requests = []
+    for scale in scales:
+        model = replace(built.model,
+                        barrel_stiffness_scale=built.model.barrel_stiffness_scale * scale)
+        bench = Bench(replace(built, model=model), ball, engine, protocol.pivot,
+                      protocol.support)
+        conds = conditions_from_spec(protocol.conditions[:1], model, protocol.pivot)
+        requests.append(bench.request(conds, np.array([[location]])))
+    outcomes = engine.solve_many([r.job() for r in requests])
+    return [float(METRICS[protocol.metric].value(r.finish(out)[0])[0, 0])
+            for r, out in zip(requests, outcomes, strict=True)]
 
 
 @dataclass(frozen=True)
@@ -61,8 +70,6 @@ def calibrate_barrel(session, protocol, ball, engine, location: float, measured:
                      u_measured: float, points: int = 9) -> BarrelCalibration:
     """:func:`fit_barrel` with the model's range over the bounds (``span``; None for a solid
     bat), so that a calibration that finds no root can say why."""
-    from scipy.optimize import brentq
-
     from batcert.physics import barrel
     if session.built.model.construction != "hollow":
         return BarrelCalibration([], None)
@@ -70,15 +77,16 @@ def calibrate_barrel(session, protocol, ball, engine, location: float, measured:
     grid = np.geomspace(lo, hi, points)
 
     def f(s: float) -> float:
-        return _model_metric(session, protocol, ball, engine, location, s) - measured
+        return _model_metrics(session, protocol, ball, engine, location, [s])[0] - measured
 
-    values = [f(s) for s in grid]
+    values = [v - measured for v in _model_metrics(session, protocol, ball, engine, location,
+                                                   grid)]
     hoop = barrel.hoop_frequency(session.built.model)
     out = []
     for a, b, fa, fb in zip(grid, grid[1:], values, values[1:], strict=False):
         if (fa >= 0) == (fb >= 0):
             continue
-        s = float(brentq(f, a, b, xtol=1e-6))
+        s = brent_root(f, a, b, xtol=1e-6).x
         h = 1e-4 * s
         slope = (f(s + h) - f(s - h)) / (2 * h)
         u_s = u_measured / abs(slope) if slope else math.inf

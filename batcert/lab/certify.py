@@ -24,11 +24,13 @@ import numpy as np
 from batcert.lab.session import LabSession, reduce_session
 from batcert.methods.metrics import METRICS
 from batcert.methods.reduction import HitReduction
+from batcert.numerics import student_t_quantile
 from batcert.specs.protocol import ProtocolSpec
 
 OUTLIER_Z = 3.5  # robust z above which a hit is flagged (Iglewicz & Hoaglin 1993)
 COVERAGE = 0.95  # coverage probability of the expanded uncertainty
 MC_DRAWS = 200_000  # Monte Carlo draws (JCGM 101)
+MC_CHUNK = 20_000  # draws reduced at a time (memory only: the draws are made first, in order)
 # the metrics a stationary-bat lab test measures (the metric registry's lab entries), by name
 LAB_METRICS = {m.name: m.field for m in METRICS.values() if m.lab}
 
@@ -186,7 +188,7 @@ def _monte_carlo(session: LabSession, used: list[int], metric: str, values: np.n
     fraction within the limit and the number of draws left out because they reduce to no
     finite value (an input drawn to zero, e.g. an inbound speed when the speed's uncertainty
     is comparable to the speed itself)."""
-    from batcert.methods.reduction import reduce_hits
+    from batcert.methods.reduction import BALL_COR_FIELDS, reduce_hits
     u = session.spec.uncertainty or {}
     rng = np.random.default_rng(seed)
     n = len(used)
@@ -197,10 +199,15 @@ def _monte_carlo(session: LabSession, used: list[int], metric: str, values: np.n
     dr = rng.normal(0, u.get("impact_location", 0.0), (draws, 1))
     inertia = session.moi_pivot + rng.normal(0, u.get("moi", 0.0), (draws, 1))
     mass = session.ball.model.mass + rng.normal(0, u.get("ball_mass", 0.0), (draws, 1))
-    red = reduce_hits(h.inbound_speed[used][None, :] + dv, h.rebound_speed[used][None, :] + dv2,
-                      session.impact_location[used][None, :] + dr, inertia, mass,
-                      session.ball.model.cor)
-    mean = getattr(red, metric).mean(axis=1)
+    cor = session.ball.model.cor if metric in BALL_COR_FIELDS else None
+    mean = np.empty(draws)
+    for a in range(0, draws, MC_CHUNK):  # in chunks: a few MB at a time, not 200k x hits
+        b = a + MC_CHUNK
+        red = reduce_hits(h.inbound_speed[used][None, :] + dv[a:b],
+                          h.rebound_speed[used][None, :] + dv2[a:b],
+                          session.impact_location[used][None, :] + dr[a:b], inertia[a:b],
+                          mass[a:b], cor)
+        mean[a:b] = getattr(red, metric).mean(axis=1)
     if n > 1:  # the scatter of the hits about their mean: Student's t, n - 1 dof (JCGM 101 6.4.9)
         s = float(np.std(values[used], ddof=1))
         mean = mean + s / math.sqrt(n) * rng.standard_t(n - 1, draws)
@@ -257,8 +264,7 @@ def certify(session: LabSession, protocol: ProtocolSpec,
     u_c = math.sqrt(u_a**2 + sum(x**2 for x in u_b.values()))
     # the type B inputs are taken as known exactly enough (infinite degrees of freedom)
     dof = u_c**4 / (u_a**4 / (n - 1)) if n > 1 and u_a > 0 else math.inf
-    from scipy.stats import t as student
-    k_cov = float(student.ppf(0.5 + COVERAGE / 2, dof)) if math.isfinite(dof) else 1.959964
+    k_cov = student_t_quantile(0.5 + COVERAGE / 2, dof)  # dof inf: the normal's
     mc_std = mc_interval = conformance = None
     if used:
         mc_std, mc_interval, conformance, dropped = _monte_carlo(session, used, metric, values,

@@ -32,8 +32,12 @@ class HitReduction:
     measured_bpf: np.ndarray  # measured_cor / ball_cor (the BPF method), NaN without w2 [-]
 
 
+# the fields that need the ball's COR (the rest do not read ``ball_cor_at``)
+BALL_COR_FIELDS = ("ball_cor", "bpf", "measured_bpf")
+
+
 def reduce_hits(inbound_speed, rebound_speed, impact_location, moi_pivot, ball_mass,
-                ball_cor_at: Callable[[np.ndarray], np.ndarray | float],
+                ball_cor_at: Callable[[np.ndarray], np.ndarray | float] | None,
                 bat_angular_speed_after=None) -> HitReduction:
     """Reduce hits on a pivoted bat at rest.
 
@@ -47,8 +51,9 @@ def reduce_hits(inbound_speed, rebound_speed, impact_location, moi_pivot, ball_m
         The bat's MOI about the pivot, ``I`` [kg m^2] (an array broadcasts: Monte Carlo draws).
     ball_mass : float or array_like
         ``m`` [kg].
-    ball_cor_at : callable
-        The ball's rigid-wall COR at an impact speed [m/s] (the ball lot's).
+    ball_cor_at : callable or None
+        The ball's rigid-wall COR at an impact speed [m/s] (the ball lot's); None where only
+        the fields that do not need it are wanted (:data:`BALL_COR_FIELDS` are then NaN).
     bat_angular_speed_after : array_like, optional
         ``w2`` measured after impact [rad/s] (BPF method); NaN where not measured.
 
@@ -72,7 +77,8 @@ def reduce_hits(inbound_speed, rebound_speed, impact_location, moi_pivot, ball_m
     e_a = rigid.collision_efficiency_from_speeds(r, pitch, zero, v_r)
     k = rigid.recoil_factor_pivoted(ball_mass, moi_pivot, r)
     w2 = -rigid.bat_angular_speed_after(moi_pivot, ball_mass, r, pitch, zero, v_r)
-    e_b = np.asarray(ball_cor_at(v_i), float)
+    e_b = (np.full_like(v_i, np.nan) if ball_cor_at is None
+           else np.asarray(ball_cor_at(v_i), float))
     bbcor = rigid.bbcor_from_collision_efficiency(e_a, k)
     measured = np.full_like(v_i, np.nan) if bat_angular_speed_after is None \
         else np.asarray(bat_angular_speed_after, float)

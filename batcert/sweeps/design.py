@@ -2,7 +2,7 @@
 
 The margin (limit + tolerance - value) is first swept over the range (the margin curve, a
 :mod:`~batcert.sweeps.sweep` of ``points`` variants); every sign change between neighbours
-brackets a root, which Brent's method (:func:`scipy.optimize.brentq`) then locates on the engine
+brackets a root, which Brent's method (:func:`batcert.numerics.brent_root`) then locates on the engine
 to within the parameter's tolerance. The margin need not be monotonic: every root in the range
 is found, between points of the curve, and the passing intervals are stated. A root between two
 points of the curve that both pass (or both fail) is missed, so the curve should be fine enough
@@ -11,6 +11,7 @@ for the margin's shape; the report shows it.
 
 from __future__ import annotations
 
+from batcert.numerics import brent_root
 from batcert.results.sweep import DesignResult, DesignRoot, SweepResult
 from batcert.sweeps.sweep import Chunk, Plan, evaluate_chunk
 from batcert.sweeps.variants import ParameterError
@@ -41,8 +42,6 @@ def _passes(margin: float) -> bool:
 def solve(plan: Plan, curve: SweepResult, tolerance: float) -> DesignResult:
     """Every root of the margin in the range of ``curve`` (the margin swept over ``plan``'s
     axis), located to ``tolerance`` [SI]."""
-    from scipy.optimize import brentq
-
     if curve.limit is None:
         raise ParameterError(f"protocol {curve.protocol!r} sets no limit: there is nothing to "
                              "design to")
@@ -53,14 +52,10 @@ def solve(plan: Plan, curve: SweepResult, tolerance: float) -> DesignResult:
                                   strict=False):
         if m0 is None or m1 is None or _passes(m0) == _passes(m1):
             continue
-        calls = [0]
-
-        def f(x: float, calls: list[int] = calls) -> float:
-            calls[0] += 1
-            return margin_at(plan, x)
-
-        root = float(brentq(f, x0, x1, xtol=tolerance, rtol=1e-12, maxiter=100))
+        found = brent_root(lambda x: margin_at(plan, x), x0, x1, xtol=tolerance, rtol=1e-12,
+                           maxiter=100)
+        root = found.x
         at = _row_at(plan, root)  # the bat there: its mass and length (the drop)
-        roots.append(DesignRoot(root, [x0, x1], calls[0], passes_above=_passes(m1),
+        roots.append(DesignRoot(root, [x0, x1], found.calls, passes_above=_passes(m1),
                                 mass=at.get("mass"), length=at.get("length")))
     return DesignResult(plan.axes[0].name, tolerance, roots, [xs[0], xs[-1]])

@@ -8,7 +8,7 @@ import pytest
 
 from batcert.commands.inputs import load_protocol_any
 from batcert.engines import get_engine
-from batcert.lab.calibrate import _model_metric, fit_barrel, with_hoop_frequency
+from batcert.lab.calibrate import _model_metrics, fit_barrel, with_hoop_frequency
 from batcert.lab.certify import certify
 from batcert.lab.session import load_lab_session
 
@@ -29,10 +29,10 @@ def test_the_fitted_barrel_meets_the_measurement():
     _, c = certify(s, pin.protocol, 0.5)
     eng = get_engine("flexible")
     loc = c.scan[c.location].position
-    measured = _model_metric(s, pin.protocol, pin.ball, eng, loc, 1.7)
+    measured = _model_metrics(s, pin.protocol, pin.ball, eng, loc, [1.7])[0]
     (fit,) = fit_barrel(s, pin.protocol, pin.ball, eng, loc, measured, c.u_c)
     assert fit.scale == pytest.approx(1.7, abs=1e-5)
-    assert _model_metric(s, pin.protocol, pin.ball, eng, loc, fit.scale) == \
+    assert _model_metrics(s, pin.protocol, pin.ball, eng, loc, [fit.scale])[0] == \
         pytest.approx(measured, abs=1e-6)
     assert fit.u_scale == pytest.approx(c.u_c / abs(fit.slope), rel=1e-12)
     assert fit.hoop_frequency == pytest.approx(barrel.hoop_frequency(s.built.model)
@@ -79,7 +79,7 @@ def test_a_measurement_beyond_the_bounds_says_how_far_the_model_is():
     lo, hi = cal.span
     assert c.value < lo < hi
     # the range covers the model's own values at the bounds (its grid includes both ends)
-    ends = [_model_metric(s, pin.protocol, pin.ball, eng, loc, x) for x in (0.25, 4.0)]
+    ends = _model_metrics(s, pin.protocol, pin.ball, eng, loc, [0.25, 4.0])
     assert lo <= min(ends) + 1e-12 and hi >= max(ends) - 1e-12
     fits, warnings = _barrel_fits(s, pin.protocol, pin.ball, "flexible",
                                   SimpleNamespace(value=c.value, location=c.location,

@@ -229,14 +229,19 @@ def test_monte_carlo_draws_without_a_finite_value_are_left_out_and_said(bbcor, m
     from batcert.methods import reduction
     real = reduction.reduce_hits
 
+    chunks = []
+
     def some_infinite(*args, **kwargs):
         red = real(*args, **kwargs)
-        if red.bbcor.ndim == 2:  # the Monte Carlo's draws, not the hits
-            bbcor = red.bbcor.copy()
-            bbcor[:10, 0] = np.inf
-            return replace(red, bbcor=bbcor)
+        if red.bbcor.ndim == 2:  # the Monte Carlo's draws (in chunks), not the hits
+            chunks.append(red.bbcor.shape[0])
+            if len(chunks) == 1:  # ten draws of the first chunk
+                bbcor = red.bbcor.copy()
+                bbcor[:10, 0] = np.inf
+                return replace(red, bbcor=bbcor)
         return red
     monkeypatch.setattr(reduction, "reduce_hits", some_infinite)
     _, c = certify(load_lab_session(LAB / "synthetic-scatter.yaml"), bbcor, 0.5)
     assert c.mc_std is not None and math.isfinite(c.mc_std)
     assert f"10 of {MC_DRAWS:,} Monte Carlo draws reduce to no finite value" in " ".join(c.warnings)
+    assert sum(chunks) == MC_DRAWS

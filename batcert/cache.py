@@ -7,7 +7,7 @@ Where: ``$BATCERT_CACHE_DIR``, else ``$XDG_CACHE_HOME/batcert`` or ``~/.cache/ba
 folder per kind (``templates``: compiled report templates; ``barrels``: hollow bats' barrel
 shells, :mod:`batcert.physics.barrel`; ``modes``: bats' beam modes; ``ball-fits``: viscoelastic
 balls fitted to their tests; ``ball-walls``: balls' rigid-wall tables,
-:mod:`batcert.physics.balls`).
+:mod:`batcert.physics.balls`; ``compressions``: barrels' compression stiffness).
 """
 
 from __future__ import annotations

@@ -62,6 +62,8 @@ KINDS: dict[str, Kind] = {
     "modes": Kind(64, "modes", "a bat's beam modes (batcert.physics.modes.cached_modes)"),
     "barrel": Kind(8, "barrels", "a hollow bat's nominal wall: shell modes and static "
                    "flexibility, about 4 MB for a 34 in bat (batcert.physics.barrel)"),
+    "barrel-compression": Kind(32, "compressions", "a hollow barrel's stiffness between two "
+                               "platens (a protocol's compression test; a static shell solve)"),
     "barrel-scaled": Kind(16, None, "a bat's own wall, scaled from its nominal one: the engine "
                           "asks for it once per batch"),
     "patch-flexibility": Kind(64, None, "a barrel's flexibility under a batch of patches: a "

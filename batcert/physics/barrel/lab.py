@@ -7,11 +7,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from batcert import workspace
 from batcert.physics.banded import lower_band
 from batcert.physics.barrel.wall import (
     STATIC_ORDERS,
     barrel_shell,
     cached_barrel_modes,
+    wall_of,
 )
 from batcert.physics.batmodel import BatModel
 from batcert.physics.shell import (
@@ -72,7 +74,19 @@ def compression_stiffness(bat: BatModel, position: float, platen_width: float) -
     platen divided by the platens' approach (the even orders 0, 2, 4 .. ``STATIC_ORDERS``;
     the beam's bending, order 1, cancels). Shell theory only: the local crushing under a
     narrow platen edge is not modelled.
+
+    Kept by the active workspace (kind ``barrel-compression``, also on disk where a store is
+    attached), keyed by :func:`wall_of` ``(bat)``: a run of a hollow bat under a protocol
+    with a compression test, and every draw of a Monte Carlo, would otherwise solve the
+    shell again (and import :mod:`scipy.linalg`, about 0.12 s).
     """
+    return workspace.current().call(
+        "barrel-compression", _compression_stiffness, wall_of(bat), float(position),
+        float(platen_width), save=lambda k: {"stiffness": np.array(k)},
+        load=lambda a: None if a is None else float(a["stiffness"]))
+
+
+def _compression_stiffness(bat: BatModel, position: float, platen_width: float) -> float:
     import scipy.linalg
 
     shell = barrel_shell(bat)

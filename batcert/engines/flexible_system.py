@@ -21,7 +21,7 @@ from batcert.physics.balls.impact1d import wall_mean_compression
 from batcert.physics.batmodel import BatModel
 from batcert.physics.coupling import Coupling
 from batcert.physics.linear_system import LinearSystem
-from batcert.physics.modes import Modes
+from batcert.physics.modes import Modes, beam_of
 
 SUPPORTS = ("pinned", "free")
 _PIVOT_CLEARANCE = 1e-3  # an impact closer than this to the pivot is refused [m]
@@ -171,8 +171,8 @@ def linear_system(s: SystemSettings, bat: BatModel, ball: BallModel, pivot: floa
         raise ValueError(f"loss factor {bat.material.loss_factor} out of range [0, 2)")
     recoil = rigid.recoil_factor(bat, ball.mass, pivot, batch.impact_location, support)
     patch = patch_of(s, bat, ball, z, batch.relative_speed, recoil, compression)
-    phi, residual = workspace.current().call(
-        "beam-response", beam_response, bat, modes, patch.points, patch.weights,
+    phi, residual = workspace.current().call(  # the beam alone: barrel variants share it
+        "beam-response", beam_response, beam_of(bat), modes, patch.points, patch.weights,
         bool(s.residual), rows=patch.points.shape[0])
     nr = modes.n_rigid
     gain, omega = phi[:, nr:], np.broadcast_to(modes.omega[nr:], (z.size, phi.shape[1] - nr))

@@ -14,7 +14,7 @@ import numpy as np
 from batcert import workspace
 from batcert.physics.batmodel import BatModel
 from batcert.physics.beam import assemble, check_support, free_dofs, rigid_modes
-from batcert.physics.modes import Modes
+from batcert.physics.modes import Modes, beam_of
 
 
 def patch_reader(z_nodes: np.ndarray, z_points: np.ndarray, weights: np.ndarray) -> np.ndarray:
@@ -100,7 +100,9 @@ def _flexibility(bat: BatModel, modes: Modes) -> _Flexibility:
     :mod:`batcert.physics.ritz`)."""
     if modes.flexibility is not None:
         return _Flexibility(modes.z, modes.flexibility)
-    return workspace.current().call("residual-flexibility", _static_flexibility, bat, modes)
+    # keyed by the beam alone (beam_of): the plausible barrel's variants of one bat share it
+    return workspace.current().call("residual-flexibility", _static_flexibility, beam_of(bat),
+                                    modes)
 
 
 def _static_flexibility(bat: BatModel, modes: Modes) -> _Flexibility:

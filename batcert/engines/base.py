@@ -82,6 +82,9 @@ class Engine(Protocol):
     """What the runner needs of an engine tier."""
 
     name: str
+    #: whether the engine models a hollow bat's barrel shell (a run then records the barrel's
+    #: modes and range; an engine that does not never builds the shell)
+    models_barrel: bool
     #: metric name -> warning: metrics that this engine cannot resolve (e.g. a rigid bat's
     #: BPF reflects only the ball's loss, not the bat)
     limitations: dict[str, str]

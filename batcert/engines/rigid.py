@@ -29,6 +29,7 @@ class RigidEngine:
     """
 
     name = "rigid"
+    models_barrel = False
     limitations = {"bpf": "rigid engine: the bat neither vibrates nor flexes, so BPF only "
                           "reflects the ball's lower loss when it compresses less against a "
                           "recoiling bat; use the flexible engine for a meaningful BPF"}

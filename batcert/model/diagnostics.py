@@ -8,14 +8,15 @@ import numpy as np
 from batcert.model.build import BuiltBat
 
 
-def bat_dynamics(built: BuiltBat, pivot: float) -> dict:
+def bat_dynamics(built: BuiltBat, pivot: float, barrel: bool = True) -> dict:
     """Free-free bending frequencies [Hz] and node positions [m from knob] of the first modes;
-    for hollow bats the barrel (:func:`barrel_summary`)."""
+    for hollow bats the barrel (:func:`barrel_summary`) unless ``barrel`` is false (an engine
+    without one: the shell is then not built)."""
     from batcert.physics.modes import cached_modes, mode_nodes
     modes = cached_modes(built.model, "free", pivot, 8)
     out: dict = {"modes_hz": modes.frequencies_hz.tolist(),
                  "mode_nodes": [mode_nodes(modes, j).tolist() for j in (1, 2, 3, 4)]}
-    if built.model.construction == "hollow":
+    if barrel and built.model.construction == "hollow":
         out["barrel"] = barrel_summary(built)
     return out
 

@@ -41,7 +41,7 @@ def barrel_range_steps(bench: Bench, conds: list[Condition], locations: np.ndarr
     the :class:`BarrelRange`."""
     built = bench.built
     model = built.model
-    if model.construction != "hollow" or bench.engine.name != "flexible":
+    if model.construction != "hollow" or not bench.engine.models_barrel:
         yield []
         return None
     from batcert.physics import barrel  # scipy: hollow bats only

@@ -251,7 +251,7 @@ def _impact_steps(built: BuiltBat, p: ProtocolSpec, ball: BallSpec, engine: Engi
         inputs=inputs, batcert_version=__version__, created=created,
         warnings=(_warnings(p, conds, choice, engine) + _barrel_warning(barrel, metric.display)
                   + _wall_warning(conds, diag)),
-        extras=bat_dynamics(built, p.pivot), barrel=barrel, model_offset=metric.model_offset,
+        extras=bat_dynamics(built, p.pivot, engine.models_barrel), barrel=barrel, model_offset=metric.model_offset,
         bat_identification=identification(built.spec))
 
 

@@ -88,13 +88,15 @@ def run(bat: str | Path | LoadedBat, protocol: str | Path | ProtocolInputs,
 
 def compare(bats: Sequence[str | Path], protocols: Sequence[str | Path] = (),
             study: str | None = None, reference: str | None = None,
-            engine: str = "flexible") -> ComparisonResult:
+            engine: str = "flexible", figures: bool = False) -> ComparisonResult:
     """Two or more bats under the same protocols (or a study's), with the relative performance
-    of each against the reference (Smith 2001 Eq. 6) and, for a study, its claims checked."""
+    of each against the reference (Smith 2001 Eq. 6) and, for a study, its claims checked;
+    ``figures``: also the study's figures (sweeps of every bat, a few seconds; without them
+    the claims that read a figure are not tested, and say so)."""
     from batcert.commands.compare import run_comparison
     _ready()
     return run_comparison([str(b) for b in bats], [str(p) for p in protocols], study,
-                          reference, engine)
+                          reference, engine, figures=figures)
 
 
 def league(league_id: str | Path, bats: Sequence[str | Path],

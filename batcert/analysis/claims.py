@@ -233,6 +233,12 @@ def _figure(result: ComparisonResult, claim: ClaimSpec):
     return next((f for f in result.figures if f.id == claim.figure), None)
 
 
+def _not_computed(claim: ClaimSpec) -> str:
+    return (f"The study figure {claim.figure!r} was not computed in this comparison: a study's "
+            "figures are computed when asked for (batcert compare --study-figures or --figures "
+            "DIR; figures=True in the library).")
+
+
 def _trend(values: list[float | None], xs: list[float], nominal: float | None) -> float | None:
     """Change of a quantity from the nominal value of the parameter down to its smallest value
     (the thin-wall side): value at the smallest x minus value at the x nearest nominal."""
@@ -247,7 +253,7 @@ def _trend(values: list[float | None], xs: list[float], nominal: float | None) -
 def _check_opposite_trends(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, str]:
     fig = _figure(result, claim)
     if fig is None:
-        return "not-testable", f"The figure {claim.figure!r} was not produced."
+        return "not-testable", _not_computed(claim)
     a, b = claim.metrics or ["", ""]
     parts, ok, tested = [], True, 0
     for bat in fig.bats:
@@ -268,7 +274,7 @@ def _check_opposite_trends(result: ComparisonResult, claim: ClaimSpec) -> tuple[
 def _check_figure_sweet_spot(result: ComparisonResult, claim: ClaimSpec) -> tuple[str, str]:
     fig = _figure(result, claim)
     if fig is None:
-        return "not-testable", f"The figure {claim.figure!r} was not produced."
+        return "not-testable", _not_computed(claim)
     parts, ok, tested = [], True, 0
     for bat in fig.bats:
         spots = bat.series.get("sweet_spot", [])
@@ -309,7 +315,7 @@ def evaluate_claim(result: ComparisonResult, claim: ClaimSpec) -> ClaimResult:
     """Test one study claim against the comparison; the status never defaults to supported."""
     wanted = [*claim.protocols, *(claim.compare_with or [])]
     if claim.figure is not None and _figure(result, claim) is None:
-        status, text = "not-testable", f"The study figure {claim.figure!r} was not produced."
+        status, text = "not-testable", _not_computed(claim)
         return ClaimResult(claim.id, claim.statement, claim.source or "", claim.check, status,
                            text)
     missing = [p for p in wanted if p not in {x.protocol for x in result.protocols}]

@@ -43,6 +43,7 @@ Exit codes:
 \b
 Examples:
   batcert compare --study smith2001
+  batcert compare --study smith2001 --study-figures
   batcert compare ash-34 aluminium-34 -p proposed -p ncaa-bbcor
   batcert compare bats/*.yaml -p ncaa-bbcor --reference ash-34 --json""")
 @click.argument("bats", nargs=-1, shell_complete=_complete("bat"))
@@ -53,11 +54,14 @@ Examples:
               "path: its protocols, default bats and claims.")
 @click.option("--reference", default=None, help="Reference bat of P = (P_bat - P_ref) / P_ref "
               "(Smith 2001 Eq. 6); default the first bat; added to the bats if not among them.")
+@click.option("--study-figures", is_flag=True,
+              help="Also compute the study's figures (sweeps of every bat: about 2 s for the "
+              "2001 study) for the reports and the claims that read them; --figures implies it.")
 @_output_options("comparison")
 @FIGURES_OPTION
 @_guard
-def compare(bats, protocols, study, reference, engine, out_dir, formats, no_reports, as_json,
-            figures_dir):
+def compare(bats, protocols, study, reference, study_figures, engine, out_dir, formats,
+            no_reports, as_json, figures_dir):
     """Run every BAT under every protocol and compare them side by side: the metric per protocol
     and condition, the relative performance P against the reference bat with its mean and spread,
     the COP against the sweet spot, and a study's claims tested against the model."""
@@ -68,7 +72,8 @@ def compare(bats, protocols, study, reference, engine, out_dir, formats, no_repo
     clock = _Clock()
     with console.progress("comparing") as bar:
         result = run_comparison(list(bats), list(protocols), study, reference, engine,
-                                on_step=_stepper(bar))
+                                on_step=_stepper(bar),
+                                figures=study_figures or figures_dir is not None)
     clock.lap("inputs and engine")
     _finish(result, console.comparison_summary, target, fmts, as_json, clock, figures_dir)
 

@@ -149,7 +149,8 @@ def test_opposite_trends_not_testable_without_values_below_nominal():
 
 def test_a_figure_claim_without_its_figure_is_not_testable():
     got = evaluate_claim(BASE, OPPOSITE)  # the comparison has no figures
-    assert got.status == "not-testable" and "'wall' was not produced" in got.evidence
+    assert got.status == "not-testable" and "'wall' was not computed" in got.evidence
+    assert "--study-figures" in got.evidence  # and how to have it computed
     other = _speed_figure(("alu", [0.5, 0.5, 0.5, 0.5], [None, 0.4, 0.6, 0.8]))
     assert evaluate_claim(_with(other), OPPOSITE).status == "not-testable"
 

@@ -125,3 +125,19 @@ def test_reference_given_as_an_identical_copy_is_the_same_bat(batcert_cli, tmp_p
     data = result_of(result.stdout, "compare")
     assert data["reference"] == "Aluminium 34 in (Smith 2001)"
     assert len(data["bats"]) == 2
+
+
+def test_study_figures_only_when_asked(batcert_cli):
+    # issue 29: the study's figures (sweeps of every bat) are most of a study's time; without
+    # --study-figures they are not computed and the claims that read them say why
+    plain = result_of(batcert_cli("compare", "--study", "smith2001", "--engine", "rigid",
+                                  "--json", "--no-reports").stdout, "compare")
+    assert plain["figures"] == []
+    by_figure = [c for c in plain["claims"] if "study figure" in c["evidence"]]
+    assert len(by_figure) == 2
+    assert all(c["status"] == "not-testable" and "--study-figures" in c["evidence"]
+               for c in by_figure)
+    drawn = result_of(batcert_cli("compare", "--study", "smith2001", "--engine", "rigid",
+                                  "--study-figures", "--json", "--no-reports").stdout, "compare")
+    assert [f["id"] for f in drawn["figures"]] == ["wall-thickness", "sweet-spot-swing-speed"]
+    assert all("not computed" not in c["evidence"] for c in drawn["claims"])

@@ -36,8 +36,9 @@ BALL_MASS = 5.125 * 0.028349523125  # protocols/balls/collegiate-baseball.yaml [
 
 @pytest.fixture(scope="module")
 def replay() -> ComparisonResult:
-    """`batcert compare --study smith2001 --engine rigid` (about 3 s, most of it the figures)."""
-    return run_comparison([], [], "smith2001", None, "rigid")
+    """`batcert compare --study smith2001 --study-figures --engine rigid` (about 3 s, most of it
+    the figures)."""
+    return run_comparison([], [], "smith2001", None, "rigid", figures=True)
 
 
 def _figure(result: ComparisonResult, fid: str):

@@ -44,9 +44,8 @@ def use_cache(on: bool = True) -> None:
     if not on:
         workspace.current().attach(None)
         return
-    from batcert.cache import PHYSICS_CODE, ArrayStore, Fingerprint
-    code = Fingerprint(PHYSICS_CODE)  # one for every store, read when a store first needs it
-    workspace.current().attach(lambda folder: ArrayStore(folder, code))
+    from batcert.cache import disk_stores
+    workspace.current().attach(disk_stores())
 
 
 def _ready() -> None:

@@ -37,8 +37,9 @@ ALLOWED = {
                "model", "results", "version"},
     "reports": {"units", "errors", "results", "methods", "cache"},
     "analysis": {"units", "specs", "model", "results", "reports", "version"},
+    # (and the workspace and cache: a worker process keeps its results where its parent does)
     "sweeps": {"numerics", "units", "errors", "conventions", "physics", "methods", "engines",
-               "specs", "model", "results", "runner", "version"},
+               "specs", "model", "results", "runner", "version", "workspace", "cache"},
     "lab": {"numerics", "units", "errors", "conventions", "physics", "methods", "engines",
             "specs", "model", "runner", "results", "version"},
     "uncertainty": {"units", "errors", "conventions", "physics", "methods", "engines",

@@ -70,8 +70,9 @@ def run_sweep(plan: Plan, journal_at: Path | None = None, resume: bool = False,
         if resume:
             done = journal.load()
             plan = replace(plan, created=journal.created)
-    rows = execute(plan, journal, done, workers, scheduler, on_progress)
-    return collect(plan, rows, nominal_run(plan))
+    rows, nominal_row = execute(plan, journal, done, workers, scheduler, on_progress,
+                                nominal=True)
+    return collect(plan, rows, nominal_run(plan, nominal_row))
 
 
 def finish_journal(journal_at: Path | None) -> None:

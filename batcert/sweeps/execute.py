@@ -2,6 +2,12 @@
 (``--workers N``) or on a dask.distributed cluster (``--scheduler ADDRESS``), each finished chunk
 appended to a journal so that ``--resume`` continues an interrupted sweep without redoing it.
 
+The nominal bat, when the result shows it (:func:`~batcert.sweeps.sweep.needs_nominal`), is
+solved as one more chunk, so that with workers no engine work is left to the serial part.
+Worker processes and dask workers keep what they compute in the same cache directory as this
+process when it keeps one (the barrels of a wall sweep are then computed once on the machine,
+not once per worker, and a second run reads them).
+
 Every chunk is the same whatever runs it (:mod:`batcert.sweeps.sweep`), and a row is stored
 as JSON, which round-trips every float exactly, so a serial, parallel, distributed or resumed
 sweep gives the same numbers.
@@ -19,7 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from batcert.errors import OutputError, SchedulerUnavailable, UsageProblem
-from batcert.sweeps.sweep import Chunk, Plan, Row, evaluate_chunk
+from batcert.sweeps.sweep import Chunk, Plan, Row, chunk_size, evaluate_chunk, needs_nominal
 
 JOURNAL = "the sweep's journal"  # what OutputError says cannot be written
 
@@ -138,8 +144,25 @@ def sweep_key(plan: Plan) -> str:
     from batcert.version import __version__
     b, p = plan.base.bat, plan.base.protocol
     data = [b.sha256, p.sha256, plan.ball.sha256, plan.engine, __version__,
-            [[a.name, list(a.values)] for a in plan.axes]]
+            [[a.name, list(a.values)] for a in plan.axes], chunk_size(len(plan.points))]
     return hashlib.sha256(json.dumps(data).encode()).hexdigest()
+
+
+def evaluate_in_worker(chunk: Chunk, cache: bool = False) -> list[Row]:
+    """:func:`~batcert.sweeps.sweep.evaluate_chunk` in a worker (top-level, for process and
+    dask workers); ``cache``: keep what is computed in the worker's cache directory, as the
+    process that planned the sweep does (a worker starts without it)."""
+    if cache:
+        _attach_cache()
+    return evaluate_chunk(chunk)
+
+
+def _attach_cache() -> None:
+    """Keep the physics' costly results in this process's cache directory, once."""
+    from batcert import cache, workspace
+    ws = workspace.current()
+    if not ws.attached:
+        ws.attach(cache.disk_stores())
 
 
 def run_chunks(chunks: list[Chunk], on_done: Callable[[Chunk, list[Row]], None],
@@ -160,10 +183,13 @@ def run_chunks(chunks: list[Chunk], on_done: Callable[[Chunk, list[Row]], None],
 
 def _on_processes(chunks: list[Chunk], on_done, workers: int) -> None:
     import multiprocessing
+
+    from batcert import workspace
+    cached = workspace.current().attached
     # spawn: the parent may run a progress display's thread, which fork would copy mid-state
     pool = ProcessPoolExecutor(max_workers=min(workers, len(chunks)),
                                mp_context=multiprocessing.get_context("spawn"),
-                               initializer=_follow_parent, initargs=(os.getpid(),))
+                               initializer=_start_worker, initargs=(os.getpid(), cached))
     try:
         futures: dict[Future, Chunk] = {pool.submit(evaluate_chunk, c): c for c in chunks}
         for fut in as_completed(futures):
@@ -173,6 +199,14 @@ def _on_processes(chunks: list[Chunk], on_done, workers: int) -> None:
         raise
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _start_worker(parent: int, cached: bool) -> None:
+    """A worker process's initializer: it follows its parent (:func:`_follow_parent`) and
+    keeps what it computes in the cache directory when the parent does."""
+    _follow_parent(parent)
+    if cached:
+        _attach_cache()
 
 
 def _stop_workers(pool: ProcessPoolExecutor) -> None:
@@ -239,7 +273,9 @@ def _on_dask(chunks: list[Chunk], on_done, address: str) -> None:
         except TimeoutError:
             raise SchedulerUnavailable(f"the dask scheduler at {address} has no workers (waited "
                                        f"{WORKERS_TIMEOUT:g} s)") from None
-        futures = client.map(evaluate_chunk, chunks, pure=False)
+        from batcert import workspace
+        futures = client.map(evaluate_in_worker, chunks, cache=workspace.current().attached,
+                             pure=False)
         where = {f.key: c for f, c in zip(futures, chunks, strict=True)}
         for fut in dask_completed(futures):
             on_done(where[fut.key], fut.result())
@@ -297,10 +333,14 @@ def _unreachable(address: str, exc: BaseException) -> SchedulerUnavailable:
 
 def execute(plan: Plan, journal: Journal | None = None, done: dict[int, list[Row]] | None = None,
             workers: int = 1, scheduler: str | None = None,
-            on_progress: Callable[[int, int], None] | None = None) -> list[Row]:
+            on_progress: Callable[[int, int], None] | None = None, nominal: bool = False
+            ) -> tuple[list[Row], Row | None]:
     """Every variant's row: the chunks already ``done`` (read from ``journal`` to resume) and
-    the rest, run where asked, each added to ``journal`` as it finishes.
-    ``on_progress(variants_done, variants)`` follows the work."""
+    the rest, run where asked, each added to ``journal`` as it finishes; and with ``nominal``
+    the nominal bat's row when the sweep shows it (:func:`~batcert.sweeps.sweep.
+    needs_nominal`; else None), solved among the chunks (by a worker, when there are workers:
+    it is not left to the serial part). ``on_progress(variants_done, variants)`` follows the
+    work."""
     chunks = plan.chunks()
     done = {k: v for k, v in (done or {}).items() if k < len(chunks)}
     if journal is not None:
@@ -309,8 +349,12 @@ def execute(plan: Plan, journal: Journal | None = None, done: dict[int, list[Row
     finished = [sum(len(r) for r in done.values())]
     if on_progress:
         on_progress(finished[0], total)
+    nominal_row: list[Row] = []
 
     def on_done(chunk: Chunk, rows: list[Row]) -> None:
+        if not chunk.points:  # the nominal bat
+            nominal_row.extend(rows)
+            return
         done[chunk.index] = rows
         if journal is not None:
             journal.add(chunk.index, rows)
@@ -318,11 +362,14 @@ def execute(plan: Plan, journal: Journal | None = None, done: dict[int, list[Row
         if on_progress:
             on_progress(finished[0], total)
 
+    todo = [c for c in chunks if c.index not in done]
+    if nominal and needs_nominal(plan):
+        todo.insert(0, plan.nominal_chunk())
     fresh = not done
     try:
-        run_chunks([c for c in chunks if c.index not in done], on_done, workers, scheduler)
+        run_chunks(todo, on_done, workers, scheduler)
     except SchedulerUnavailable:
         if journal is not None and fresh and not done:
             journal.discard()  # nothing ran: a journal of nothing would be left behind
         raise
-    return [row for k in sorted(done) for row in done[k]]
+    return [row for k in sorted(done) for row in done[k]], nominal_row[0] if nominal_row else None

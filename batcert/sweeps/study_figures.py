@@ -46,7 +46,7 @@ def study_figure(spec: FigureSpec, protocol: str, plans: list[tuple[str, Plan]])
     out, percent = [], None
     for label, plan in plans:
         (axis,) = plan.axes
-        result = collect(plan, execute(plan), None)
+        result = collect(plan, execute(plan)[0], None)
         series = result.conditions[0].series
         wanted = [*spec.metrics, "at_window_edge"]  # the edge: where a sweet spot is not located
         out.append(StudyFigureBat(label, axis.nominal, list(axis.values),

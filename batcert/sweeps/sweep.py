@@ -1,12 +1,15 @@
 """Sweeps: one protocol run on every variant of a bat or a protocol, in engine batches.
 
 A :class:`Plan` holds the nominal case, the varied axes and every grid point. Its points are cut
-into :class:`Chunk` s of :data:`CHUNK_SIZE` variants, the same whatever runs them, so a chunk's
-variants share engine batches (:func:`batcert.runner.runner.run_protocols`) and the results do
-not depend on the worker count or the scheduler. :func:`evaluate_chunk` (a top-level function:
-processes and dask workers pickle it) turns a chunk into rows, one per variant, of plain JSON
-numbers; :func:`collect` turns the rows into a :class:`~batcert.results.sweep.SweepResult`.
-Where the chunks run is :mod:`batcert.sweeps.execute`'s business.
+into :class:`Chunk` s of :func:`chunk_size` variants (a number that depends only on how many
+variants there are), the same whatever runs them, so a chunk's variants share engine batches
+(:func:`batcert.runner.runner.run_protocols`) and the results do not depend on the worker count
+or the scheduler: an engine batch's last bits depend on what shares it. A batch costs about
+40 ms besides its impacts, so a variant solved alone costs about twice what one of eight solved
+together does. :func:`evaluate_chunk` (a top-level function: processes and dask workers pickle
+it) turns a chunk into rows, one per variant, of plain JSON numbers; :func:`collect` turns the
+rows into a :class:`~batcert.results.sweep.SweepResult`. Where the chunks run is
+:mod:`batcert.sweeps.execute`'s business.
 """
 
 from __future__ import annotations
@@ -33,7 +36,9 @@ from batcert.sweeps.variants import Axis, Case, ParameterError
 from batcert.units import si_unit
 from batcert.version import __version__
 
-CHUNK_SIZE = 4  # variants per chunk: the unit of work of a worker, and of resuming
+CHUNK_SIZE = 4  # variants per chunk (the unit of work of a worker, and of resuming) ...
+LARGE_CHUNK_SIZE = 8  # ... and in a sweep of LARGE_SWEEP variants or more
+LARGE_SWEEP = 256  # (32 chunks or more: several for each of 16 workers)
 MAX_VARIANTS = 100_000  # variants of one sweep, all axes together (a grid multiplies them):
 # about 7 h of the flexible engine on one core, and the grid's points, chunks and rows in memory
 Row = dict[str, Any]
@@ -70,9 +75,16 @@ class Plan:
     def chunks(self) -> list[Chunk]:
         pts = list(enumerate(self.points))
         names = tuple(a.name for a in self.axes)
-        return [Chunk(k // CHUNK_SIZE, self.base, self.built, self.ball, self.engine, names,
-                      tuple(pts[k:k + CHUNK_SIZE]), self.created)
-                for k in range(0, len(pts), CHUNK_SIZE)]
+        size = chunk_size(len(pts))
+        return [Chunk(k // size, self.base, self.built, self.ball, self.engine, names,
+                      tuple(pts[k:k + size]), self.created)
+                for k in range(0, len(pts), size)]
+
+    def nominal_chunk(self) -> Chunk:
+        """The nominal bat as its file describes it, as a chunk without points
+        (:func:`evaluate_chunk`)."""
+        return Chunk(-1, self.base, self.built, self.ball, self.engine,
+                     tuple(a.name for a in self.axes), (), self.created)
 
     def check(self) -> None:
         """Every variant can be made (before any work): a value a parameter cannot take for
@@ -154,10 +166,11 @@ def run_cases(cases: list[tuple[int, Case]], ball: BallSpec, engine_name: str, c
 
 
 def evaluate_chunk(chunk: Chunk) -> list[Row]:
-    """The rows of one chunk's variants (top-level, so that process and dask workers can run
-    it)."""
+    """The rows of one chunk's variants, solved together; a chunk without points is the
+    nominal bat as its file describes it (:func:`nominal_run`), one row. Top-level, so that
+    process and dask workers can run it."""
     cases = [(i, variant_case(chunk.base, chunk.built, chunk.names, point))
-             for i, point in chunk.points]
+             for i, point in chunk.points] or [(-1, chunk.base)]
     return run_cases(cases, chunk.ball, chunk.engine, chunk.created)
 
 
@@ -203,12 +216,29 @@ def _notes(plan: Plan) -> list[str]:
     return notes
 
 
-def nominal_run(plan: Plan) -> NominalRun | None:
-    """The nominal bat with its measurements, when the sweep's variants drop them."""
-    if not any(a.parameter.changes == "geometry" for a in plan.axes) \
-            or plan.base.bat.measured is None:
+def chunk_size(variants: int) -> int:
+    """The variants of a chunk in a sweep of ``variants`` (module notes): 1 to 8 variants
+    together take 67 to 38 ms per variant of a wall sweep, 16 and 32 together 43 and 52 ms
+    (larger batches leave the processor's cache); small chunks give more of them to share
+    among workers, large ones less fixed cost per variant."""
+    return LARGE_CHUNK_SIZE if variants >= LARGE_SWEEP else CHUNK_SIZE
+
+
+def needs_nominal(plan: Plan) -> bool:
+    """Whether the sweep's result shows the nominal bat as its file describes it: when the
+    variants drop its measurements (a geometric parameter) and it has some."""
+    return any(a.parameter.changes == "geometry" for a in plan.axes) \
+        and plan.base.bat.measured is not None
+
+
+def nominal_run(plan: Plan, row: Row | None = None) -> NominalRun | None:
+    """The nominal bat with its measurements, when the sweep's variants drop them
+    (:func:`needs_nominal`); ``row``: its row when already solved (:meth:`Plan.nominal_chunk`,
+    which gives the same numbers)."""
+    if not needs_nominal(plan):
         return None
-    row = run_cases([(0, plan.base)], plan.ball, plan.engine, plan.created)[0]
+    if row is None:
+        row = evaluate_chunk(plan.nominal_chunk())[0]
     from batcert.model.mass import mass_properties
     mp = mass_properties(plan.built, plan.base.protocol.pivot)
     return NominalRun(row.get("value"), row.get("margin"), row.get("verdict"),

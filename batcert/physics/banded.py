@@ -22,6 +22,7 @@ Pure numpy; several matrices of the same size and bandwidth are done together.
 from __future__ import annotations
 
 import numpy as np
+from numpy.lib.stride_tricks import as_strided
 
 
 def lower_band(a: np.ndarray, bandwidth: int) -> np.ndarray:
@@ -56,18 +57,20 @@ def inverse_band(factor: np.ndarray, width: int) -> np.ndarray:
     b = b1 - 1
     if width < b:
         raise ValueError(f"the band of the inverse ({width}) must be at least the matrix's ({b})")
-    # rows i..n+width of the band, orders last so that each step reads contiguous memory
-    band = np.zeros((n + width + 1, b + width + 1, o))
-    diagonal = factor[:, 0, :].T  # (n, o)
-    ratio = np.ascontiguousarray((factor[:, 1:, :] / factor[:, None, 0, :]).transpose(2, 1, 0))
-    inv_square = 1.0 / diagonal**2
-    k, j = np.meshgrid(np.arange(b), np.arange(width), indexing="ij")  # k - i - 1, j - i - 1
-    column = (j - k) + b  # where Z[k, j] sits in row k's band
+    # rows i..n+width of the band of each matrix; a row is one matrix product per matrix
+    band = np.zeros((o, n + width + 1, b + width + 1))
+    ratio = np.ascontiguousarray((factor[:, 1:, :] / factor[:, None, 0, :]).transpose(2, 0, 1))
+    inv_square = 1.0 / factor[:, 0, :] ** 2  # (o, n)
+    s_o, s_row, s_col = band.strides
     below = np.arange(1, b + 1)
     for i in range(n - 1, -1, -1):
-        lk = ratio[i]  # (b, o): L[i + 1 + k, i] / L[i, i]
-        row = -np.einsum("ko,kwo->wo", lk, band[i + 1 + k, column])  # Z[i, i+1 .. i+width]
-        band[i, b + 1:] = row
-        band[i + below, b - below] = row[:b]  # Z[i + k, i] = Z[i, i + k]
-        band[i, b] = inv_square[i] - (lk * row[:b]).sum(axis=0)
-    return np.ascontiguousarray(band[:n].transpose(2, 0, 1))
+        lk = ratio[i]  # (o, b): L[i + 1 + k, i] / L[i, i]
+        # Z[i + 1 + k, i + 1 + w] (row i + 1 + k, column w - k + b): a strided view of the
+        # rows below, no copy
+        below_rows = as_strided(band[:, i + 1, b:], shape=(o, b, width),
+                                strides=(s_o, s_row - s_col, s_col))
+        row = -np.matmul(lk[:, None, :], below_rows)[:, 0, :]  # Z[i, i+1 .. i+width]
+        band[:, i, b + 1:] = row
+        band[:, i + below, b - below] = row[:, :b]  # Z[i + k, i] = Z[i, i + k]
+        band[:, i, b] = inv_square[:, i] - (lk * row[:, :b]).sum(axis=1)
+    return np.ascontiguousarray(band[:, :n])

@@ -10,7 +10,6 @@ as plain text, never read as console markup or emoji codes.
 
 from __future__ import annotations
 
-import json
 import math
 import re
 import shutil
@@ -132,10 +131,10 @@ def _emit(parts: Sequence[tuple[str, str]], stderr: bool = False) -> None:
 
 def print_json(data: Any) -> None:
     """``data`` as strict JSON (a non-finite number, which no result should hold, is null)."""
-    from batcert.results.serialise import map_floats
+    from batcert.results.serialise import dumps, map_floats
 
     finite = map_floats(data, lambda x: x if math.isfinite(x) else None)
-    sys.stdout.write(json.dumps(finite, indent=2, allow_nan=False) + "\n")
+    sys.stdout.write(dumps(finite) + "\n")
     sys.stdout.flush()
 
 

@@ -25,14 +25,15 @@ X_LABEL = "Impact location from the pivot [m]"
 
 
 def cell(value: object) -> Markup:
-    """A table cell's content: a badge, SI with US customary below it, or escaped text."""
+    """A table cell's content: a badge, SI with US customary below it, or escaped text (each
+    part escaped, then joined: ``Markup.format`` took 0.4 s for an 800-variant sweep's table)."""
     from markupsafe import Markup, escape
 
     if isinstance(value, Badge):
-        return Markup('<span class="badge badge-{}">{}</span>').format(value.css, value.text)
+        return Markup(f'<span class="badge badge-{escape(value.css)}">{escape(value.text)}</span>')
     if isinstance(value, Display):
-        us = Markup('<span class="us">{}</span>').format(value.us) if value.us else ""
-        return Markup('<span class="si">{}</span>{}').format(value.si, us)
+        us = f'<span class="us">{escape(value.us)}</span>' if value.us else ""
+        return Markup(f'<span class="si">{escape(value.si)}</span>{us}')
     return escape(str(value))
 
 

@@ -236,7 +236,9 @@ def _figures(result, figures_dir: Path | None, stem: str | None = None) -> None:
     from batcert.reports.figures import figures_of, write_figures
     from batcert.reports.write import check_output_dir, report_stem
     check_output_dir(figures_dir)
-    paths = write_figures(figures_of(result), figures_dir, stem or report_stem(result))
+    with console.progress("drawing figures") as bar:
+        paths = write_figures(figures_of(result), figures_dir, stem or report_stem(result),
+                              on_progress=_counter(bar, "figures"))
     console.note(f"wrote {len(paths)} figure files to {figures_dir}")
 
 

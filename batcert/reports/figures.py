@@ -12,7 +12,7 @@ from __future__ import annotations
 import io
 import math
 import textwrap
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from batcert.reports.figure import BarFigure, Figure, LineFigure, named_series
@@ -100,6 +100,13 @@ def _draw_bars(ax, fig: BarFigure) -> None:
 
 def render(fig: Figure, fmt: str) -> bytes:
     """One figure in one format (svg, pdf or png) as bytes."""
+    return render_formats(fig, (fmt,))[fmt]
+
+
+def render_formats(fig: Figure, formats: Sequence[str]) -> dict[str, bytes]:
+    """One figure in each of ``formats`` (svg, pdf, png) as bytes: built and laid out once,
+    then saved in each format (each save draws it once; built per format, with the layout run
+    at every save, the 2001 study's 18 figures took 7.4 s in three formats)."""
     import matplotlib
     matplotlib.use("Agg")
     from matplotlib.figure import Figure as MplFigure
@@ -121,21 +128,30 @@ def render(fig: Figure, fmt: str) -> bytes:
         ax.set_ylabel(fig.y_label)
         if rows:
             f.legend(loc="outside lower center", frameon=False, ncols=cols)
-        buf = io.BytesIO()
-        meta = {"svg": {"Date": None}, "pdf": {"CreationDate": None, "ModDate": None},
-                "png": {}}[fmt]
-        f.savefig(buf, format=fmt, dpi=DPI, metadata=meta)
-    return buf.getvalue()
+        f.draw_without_rendering()  # the constrained layout, once; then the saves keep it
+        f.set_layout_engine("none")
+        out = {}
+        for fmt in formats:
+            buf = io.BytesIO()
+            meta = {"svg": {"Date": None}, "pdf": {"CreationDate": None, "ModDate": None},
+                    "png": {}}[fmt]
+            f.savefig(buf, format=fmt, dpi=DPI, metadata=meta)
+            out[fmt] = buf.getvalue()
+    return out
 
 
 def write_figures(figs: Sequence[Figure], directory: Path, prefix: str,
-                  formats: Sequence[str] = FIGURE_FORMATS) -> list[Path]:
-    """Every figure in every format, written as one set: ``DIR/<prefix>--<figure>.<fmt>``."""
+                  formats: Sequence[str] = FIGURE_FORMATS,
+                  on_progress: Callable[[int, int], None] | None = None) -> list[Path]:
+    """Every figure in every format, written as one set: ``DIR/<prefix>--<figure>.<fmt>``;
+    ``on_progress(figures_done, figures)`` follows the drawing."""
     from batcert.reports.write import write_texts
     files: dict[Path, str | bytes] = {}
-    for fig in figs:
-        for fmt in formats:
-            files[Path(directory) / f"{prefix}--{fig.name}.{fmt}"] = render(fig, fmt)
+    for k, fig in enumerate(figs):
+        for fmt, data in render_formats(fig, formats).items():
+            files[Path(directory) / f"{prefix}--{fig.name}.{fmt}"] = data
+        if on_progress:
+            on_progress(k + 1, len(figs))
     return write_texts(files) if files else []
 
 

@@ -19,7 +19,15 @@ from sample import sample_result
 from batcert.analysis.compare import compare
 from batcert.reports import figures as figures_module
 from batcert.reports.figure import BarFigure, LineFigure
-from batcert.reports.figures import DPI, HEIGHT_IN, WIDTH_IN, figures_of, render, write_figures
+from batcert.reports.figures import (
+    DPI,
+    HEIGHT_IN,
+    WIDTH_IN,
+    figures_of,
+    render,
+    render_formats,
+    write_figures,
+)
 from batcert.reports.svg import BarSeries, Point, SecondaryAxis, Series, VLine
 from batcert.results.compare import StudyFigure, StudyFigureBat
 
@@ -86,11 +94,11 @@ def fake_render(monkeypatch):
     """Rendering replaced by a stub (render is tested above): the bytes name what was drawn."""
     drawn = []
 
-    def fake(fig, fmt):
-        drawn.append((fig.name, fmt))
-        return f"{fig.name} as {fmt}".encode()
+    def fake(fig, formats):
+        drawn.append(fig.name)  # each figure drawn once, saved in every format
+        return {fmt: f"{fig.name} as {fmt}".encode() for fmt in formats}
 
-    monkeypatch.setattr(figures_module, "render", fake)
+    monkeypatch.setattr(figures_module, "render_formats", fake)
     return drawn
 
 
@@ -101,16 +109,23 @@ def test_write_figures_names_every_file_prefix_figure_format(tmp_path, fake_rend
     assert [p.name for p in paths] == names
     assert sorted(p.name for p in out.iterdir()) == sorted(names)
     assert (out / "ash-34--proposed--bar.pdf").read_bytes() == b"bar as pdf"
+    assert fake_render == ["line", "bar"]  # built once per figure, not once per format
     assert write_figures([LINE], out, "x", formats=("png",)) == [out / "x--line.png"]
 
 
+def test_write_figures_reports_its_progress(tmp_path, fake_render):
+    seen = []
+    write_figures([LINE, BAR], tmp_path / "f", "p", on_progress=lambda d, n: seen.append((d, n)))
+    assert seen == [(1, 2), (2, 2)]
+
+
 def test_write_figures_writes_all_or_nothing(tmp_path, monkeypatch):
-    def fail_on_bar(fig, fmt):
+    def fail_on_bar(fig, formats):
         if fig.name == "bar":
             raise RuntimeError("cannot draw")
-        return b"drawn"
+        return {fmt: b"drawn" for fmt in formats}
 
-    monkeypatch.setattr(figures_module, "render", fail_on_bar)
+    monkeypatch.setattr(figures_module, "render_formats", fail_on_bar)
     with pytest.raises(RuntimeError):
         write_figures([LINE, BAR], tmp_path / "f", "p")
     assert not (tmp_path / "f").exists()  # the line figure, drawn first, was not written
@@ -235,3 +250,12 @@ def test_comparison_charts_keep_one_colour_per_bat_and_show_p_ranges():
         assert lo == pytest.approx(spread.min * 100, abs=5e-5)
         assert hi == pytest.approx(spread.max * 100, abs=5e-5)
         assert lo <= mean <= hi
+
+
+def test_one_build_saved_in_every_format_is_each_format_built_alone():
+    # issue 29: a figure is built and laid out once and saved in each format; what each save
+    # gives is what that format built on its own gives
+    together = render_formats(LINE, ("svg", "pdf", "png"))
+    assert together["svg"] == render(LINE, "svg")
+    assert together["pdf"] == render(LINE, "pdf")
+    assert together["png"] == render(LINE, "png")

@@ -6,7 +6,9 @@ directory each time), median and minimum wall time and the median's ratio to ``p
     python benchmarks/bench_commands.py [--repeat 3] [--only NAME] [--json FILE]
 
 BLAS is pinned to one thread (``OPENBLAS_NUM_THREADS``, ``OMP_NUM_THREADS``,
-``MKL_NUM_THREADS`` = 1), as a worker of a sweep runs. Commands run from a scratch directory,
+``MKL_NUM_THREADS`` = 1), as a worker of a sweep runs; ``PYTHONDONTWRITEBYTECODE`` is dropped,
+so that the modules run from compiled bytecode as an installed package's do (with it, every
+command pays 0.05-0.1 s compiling). Commands run from a scratch directory,
 so that shipped names resolve from the installation; reports go to a scratch folder. The
 rounds alternate the commands with the baseline, so that a drifting machine loads all alike.
 Targets (issue 29, 2-core machine, warm unless said): ``run --uncertainty 1000`` <= 1 s,
@@ -70,6 +72,7 @@ def main() -> None:
     args = ap.parse_args()
     exe, python = installed_batcert()
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
+    env.pop("PYTHONDONTWRITEBYTECODE", None)  # compiled bytecode, as an installed package has
     chosen = {k: v for k, v in COMMANDS.items()
               if not args.only or any(o in k for o in args.only)}
     with tempfile.TemporaryDirectory() as tmp:

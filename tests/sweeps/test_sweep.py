@@ -202,12 +202,26 @@ def test_a_variant_that_cannot_be_built_gets_an_error_row():
 
 
 # ---- where it runs ------------------------------------------------------------------------
-def test_two_worker_processes_give_the_serial_numbers(flexible_wall_sweep):
-    plan, serial = flexible_wall_sweep
-    assert len(plan.chunks()) == 2  # so that both workers have one
+def test_two_worker_processes_give_the_serial_numbers(monkeypatch):
+    # nine walls: the nominal bat and the first chunk are solved here, the two chunks left by
+    # the workers (started whatever the work: WORKER_START 0)
+    monkeypatch.setattr(execute_module, "WORKER_START", 0.0)
+    plan = plan_sweep("aluminium-34", "ncaa-bbcor", ["wall=90%:110%:9"], engine="flexible")
+    assert len(plan.chunks()) == 3
+    serial = run_sweep(plan)
     parallel = run_sweep(plan, workers=2)
     assert parallel.to_dict()["metrics"] == serial.to_dict()["metrics"]
     assert parallel.to_dict() == serial.to_dict()
+
+
+def test_a_short_sweep_with_workers_starts_none(monkeypatch):
+    # issue 29: --workers 2 on a sweep of a fraction of a second took longer than serial (the
+    # processes' start-up); the first chunk shows the rest is not worth them
+    started = []
+    monkeypatch.setattr(execute_module, "_on_processes", lambda *a: started.append(a))
+    plan = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:60m/s:12"], engine="rigid")
+    assert run_sweep(plan, workers=2).to_dict() == run_sweep(plan).to_dict()
+    assert started == []
 
 
 # ---- the journal ----------------------------------------------------------------------------

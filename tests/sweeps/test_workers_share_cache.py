@@ -6,6 +6,7 @@ import pytest
 
 from batcert import cache, workspace
 from batcert.commands.sweep import plan_sweep, run_sweep
+from batcert.sweeps import execute
 from batcert.sweeps.sweep import CHUNK_SIZE, LARGE_CHUNK_SIZE, LARGE_SWEEP, chunk_size
 
 
@@ -14,23 +15,35 @@ def _entries(root, folder):
     return sorted(p.name for p in where.iterdir()) if where.is_dir() else []
 
 
+# thirteen walls: the nominal bat and the first chunk (four walls) are solved in this process,
+# the other three chunks (nine walls) by the workers, started whatever the work
+WALLS = ["wall=80%:120%:13"]
+
+
+@pytest.fixture
+def workers_always(monkeypatch):
+    monkeypatch.setattr(execute, "WORKER_START", 0.0)
+
+
+@pytest.mark.slow
 def test_worker_processes_keep_their_barrels_in_the_cache_directory(tmp_path, monkeypatch,
-                                                                   flexible_wall_sweep):
+                                                                   workers_always):
     monkeypatch.setenv("BATCERT_CACHE_DIR", str(tmp_path))
-    plan, serial = flexible_wall_sweep
+    plan = plan_sweep("aluminium-34", "ncaa-bbcor", WALLS, engine="flexible")
     with workspace.active(workspace.Workspace()) as ws:
         ws.attach(cache.disk_stores())
         parallel = run_sweep(plan, workers=2)
-    # five walls: each variant's barrel (the nominal one computed from a scaled wall) was kept
-    # by the worker that computed it, in this test's cache directory
-    assert len(_entries(tmp_path, "barrels")) >= 5
-    assert parallel.to_dict() == serial.to_dict()
+    # one barrel per wall; nine of them only the workers computed, and they kept them here
+    assert len(_entries(tmp_path, "barrels")) >= 13
+    with workspace.active(workspace.Workspace()):
+        assert parallel.to_dict() == run_sweep(plan).to_dict()
 
 
+@pytest.mark.slow
 def test_workers_of_a_process_without_a_cache_keep_nothing(tmp_path, monkeypatch,
-                                                           flexible_wall_sweep):
+                                                           workers_always):
     monkeypatch.setenv("BATCERT_CACHE_DIR", str(tmp_path))
-    plan, _ = flexible_wall_sweep
+    plan = plan_sweep("aluminium-34", "ncaa-bbcor", WALLS, engine="flexible")
     with workspace.active(workspace.Workspace()):  # no disk store attached: use_cache(False)
         run_sweep(plan, workers=2)
     assert _entries(tmp_path, "barrels") == []

@@ -5,6 +5,9 @@ directory each time), median and minimum wall time and the median's ratio to ``p
 
     python benchmarks/bench_commands.py [--repeat 3] [--only NAME] [--json FILE]
 
+(CI runs it with the default ``--repeat 1``: about a minute and a half on 2 cores; the
+figures in docs/performance.md are of ``--repeat 3``.)
+
 BLAS is pinned to one thread (``OPENBLAS_NUM_THREADS``, ``OMP_NUM_THREADS``,
 ``MKL_NUM_THREADS`` = 1), as a worker of a sweep runs; ``PYTHONDONTWRITEBYTECODE`` is dropped,
 so that the modules run from compiled bytecode as an installed package's do (with it, every
@@ -66,7 +69,7 @@ def _time(cmd: list[str], env: dict[str, str], cwd: Path) -> float:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--only", action="append", help="run only commands whose name has this")
     ap.add_argument("--json", type=Path)
     args = ap.parse_args()

@@ -88,13 +88,13 @@ _MAGIC = b"batcert arrays 1\n"
 _ALIGN = 64  # each array's bytes start on a multiple of this
 
 
-
 def disk_stores():
     """What :meth:`batcert.workspace.Workspace.attach` takes to keep the physics' results in
     the cache directory: one :class:`ArrayStore` per folder, sharing one fingerprint of the
     physics' code (read when a store first needs it)."""
     code = Fingerprint(PHYSICS_CODE)
     return lambda folder: ArrayStore(folder, code)
+
 
 class ArrayStore:
     """Named sets of numpy arrays kept as files in :func:`cache_dir` ``(kind)``, least recently

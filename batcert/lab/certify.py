@@ -200,13 +200,13 @@ def _monte_carlo(session: LabSession, used: list[int], metric: str, values: np.n
     inertia = session.moi_pivot + rng.normal(0, u.get("moi", 0.0), (draws, 1))
     mass = session.ball.model.mass + rng.normal(0, u.get("ball_mass", 0.0), (draws, 1))
     cor = session.ball.model.cor if metric in BALL_COR_FIELDS else None
+    inbound, rebound = h.inbound_speed[used][None, :], h.rebound_speed[used][None, :]
+    location = session.impact_location[used][None, :]
     mean = np.empty(draws)
     for a in range(0, draws, MC_CHUNK):  # in chunks: a few MB at a time, not 200k x hits
         b = a + MC_CHUNK
-        red = reduce_hits(h.inbound_speed[used][None, :] + dv[a:b],
-                          h.rebound_speed[used][None, :] + dv2[a:b],
-                          session.impact_location[used][None, :] + dr[a:b], inertia[a:b],
-                          mass[a:b], cor)
+        red = reduce_hits(inbound + dv[a:b], rebound + dv2[a:b], location + dr[a:b],
+                          inertia[a:b], mass[a:b], cor)
         mean[a:b] = getattr(red, metric).mean(axis=1)
     if n > 1:  # the scatter of the hits about their mean: Student's t, n - 1 dof (JCGM 101 6.4.9)
         s = float(np.std(values[used], ddof=1))

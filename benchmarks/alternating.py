@@ -1,7 +1,8 @@
 """Wall times of short Python programs, each a fresh process, run in turns and compared with
 ``python -c "import numpy"`` (the benchmarks' yardstick): the measuring loop of
 bench_exit.py and bench_laminate.py; and the installed ``batcert`` command that the command
-benchmarks time (bench_cli.py, bench_field.py, bench_uncertainty.py)."""
+benchmarks time (bench_cli.py, bench_commands.py, bench_field.py, bench_scaling.py,
+bench_uncertainty.py), one run at a time (:func:`timed_command`)."""
 
 from __future__ import annotations
 
@@ -23,6 +24,20 @@ def installed_batcert() -> tuple[str, str]:
         raise SystemExit("no `batcert` on PATH: install the package first (pip install .)")
     python = Path(exe).with_name("python")
     return exe, str(python) if python.exists() else sys.executable
+
+
+def timed_command(args: list[str], cwd: Path, env: dict[str, str],
+                  allowed: tuple[int, ...] = (0, 1)) -> float:
+    """Wall time [s] of one run of ``args`` (a fresh process) in ``cwd`` with ``env``; exits
+    with the command's error output when its exit code is not among ``allowed`` (1: a verdict
+    of fail, which is a result)."""
+    t0 = time.perf_counter()
+    proc = subprocess.run(args, cwd=cwd, capture_output=True, text=True, env=env)
+    elapsed = time.perf_counter() - t0
+    if proc.returncode not in allowed:
+        raise SystemExit(f"{' '.join(map(str, args))} failed ({proc.returncode}):\n"
+                         f"{proc.stderr}")
+    return elapsed
 
 
 def median_times(cases: dict[str, str], repeat: int) -> dict[str, float]:

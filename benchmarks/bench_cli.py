@@ -22,10 +22,9 @@ import os
 import statistics
 import subprocess
 import tempfile
-import time
 from pathlib import Path
 
-from alternating import installed_batcert
+from alternating import installed_batcert, timed_command
 
 COMMANDS = {
     "run ash-34 proposed": ["run", "ash-34", "--protocol", "proposed"],
@@ -49,13 +48,7 @@ TARGETS = {"run ash-34 proposed": 0.25, "run ash-34 proposed --engine rigid": 0.
 
 
 def wall(args: list[str], cwd: Path, cache: Path) -> float:
-    env = dict(os.environ, BATCERT_CACHE_DIR=str(cache))
-    t0 = time.perf_counter()
-    proc = subprocess.run(args, cwd=cwd, capture_output=True, text=True, env=env)
-    elapsed = time.perf_counter() - t0
-    if proc.returncode not in (0, 1):
-        raise SystemExit(f"{' '.join(args)} failed ({proc.returncode}):\n{proc.stderr}")
-    return elapsed
+    return timed_command(args, cwd, dict(os.environ, BATCERT_CACHE_DIR=str(cache)))
 
 
 def main() -> None:

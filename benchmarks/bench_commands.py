@@ -26,13 +26,11 @@ import json
 import os
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
-from alternating import installed_batcert
+from alternating import installed_batcert, timed_command
 
 REPO = Path(__file__).resolve().parents[1]
 LAB = REPO / "examples" / "lab" / "synthetic-scatter.yaml"
@@ -58,15 +56,6 @@ COMMANDS: dict[str, tuple[list[str], float | None, float | None, bool]] = {
 COLD_TARGETS = {"design aluminium-34 --solve wall": 1.5}
 
 
-def _time(cmd: list[str], env: dict[str, str], cwd: Path) -> float:
-    t = time.perf_counter()
-    proc = subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
-    elapsed = time.perf_counter() - t
-    if proc.returncode not in (0, 1):
-        raise SystemExit(f"{' '.join(cmd)} failed ({proc.returncode}):\n{proc.stderr}")
-    return elapsed
-
-
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=1)
@@ -84,17 +73,17 @@ def main() -> None:
         full = {k: [exe, *(a.format(figures=cwd / "figures") for a in cmd), "--out",
                     str(cwd / "reports")] for k, (cmd, *_rest) in chosen.items()}
         for cmd in full.values():  # the warm runs' cache, filled as a user's first run does
-            _time(cmd, warm_env, cwd)
+            timed_command(cmd, cwd, warm_env)
         times: dict[str, list[float]] = {"numpy import": []}
         for _ in range(args.repeat):
-            times["numpy import"].append(_time([python, "-c", "import numpy"], env, cwd))
+            times["numpy import"].append(timed_command([python, "-c", "import numpy"], cwd, env))
             for name, cmd in full.items():
-                times.setdefault(f"{name} (warm)", []).append(_time(cmd, warm_env, cwd))
+                times.setdefault(f"{name} (warm)", []).append(timed_command(cmd, cwd, warm_env))
                 if chosen[name][3]:
                     cold = cwd / "cold"
                     shutil.rmtree(cold, ignore_errors=True)
                     times.setdefault(f"{name} (cold)", []).append(
-                        _time(cmd, dict(env, BATCERT_CACHE_DIR=str(cold)), cwd))
+                        timed_command(cmd, cwd, dict(env, BATCERT_CACHE_DIR=str(cold))))
     base = statistics.median(times["numpy import"])
     print(f"{os.cpu_count()} CPUs, Python {sys.version.split()[0]}, median of {args.repeat}; "
           f"`python -c \"import numpy\"` {base * 1e3:.0f} ms")

@@ -18,21 +18,15 @@ import os
 import statistics
 import subprocess
 import tempfile
-import time
 from pathlib import Path
 
-from alternating import installed_batcert
+from alternating import installed_batcert, timed_command
 
 TARGET = 1.0  # [s], warm, each bat and profile
 
 
 def wall(args: list[str], cwd: Path, env: dict[str, str]) -> float:
-    t0 = time.perf_counter()
-    proc = subprocess.run(args, cwd=cwd, capture_output=True, text=True, env=env)
-    elapsed = time.perf_counter() - t0
-    if proc.returncode != 0:
-        raise SystemExit(f"{' '.join(args)} failed ({proc.returncode}):\n{proc.stderr}")
-    return elapsed
+    return timed_command(args, cwd, env, allowed=(0,))
 
 
 def shipped(python: str, kind: str) -> list[str]:

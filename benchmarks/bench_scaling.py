@@ -129,19 +129,18 @@ def command_times(args: list[str], repeat: int) -> dict[str, float]:
     """The installed command, serial and with two workers, alternating with the numpy
     baseline: median [s] of each."""
     sys.path.insert(0, str(Path(__file__).parent))
-    from alternating import installed_batcert
+    from alternating import installed_batcert, timed_command
     exe, python = installed_batcert()
+    env, cwd = dict(os.environ), Path.cwd()
     runs = {"numpy import": [python, "-c", "import numpy"],
             "serial": [exe, *args, "--no-reports", "-q"],
             "--workers 2": [exe, *args, "--workers", "2", "--no-reports", "-q"]}
     times: dict[str, list[float]] = {k: [] for k in runs}
     for cmd in runs.values():  # a first round fills the cache directory
-        subprocess.run(cmd, capture_output=True)
+        timed_command(cmd, cwd, env)
     for _ in range(repeat):
         for k, cmd in runs.items():
-            t = time.perf_counter()
-            subprocess.run(cmd, capture_output=True)
-            times[k].append(time.perf_counter() - t)
+            times[k].append(timed_command(cmd, cwd, env))
     return {k: statistics.median(v) for k, v in times.items()}
 
 

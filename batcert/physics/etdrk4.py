@@ -59,6 +59,24 @@ def _exponentials(lam: np.ndarray, h: float) -> tuple[np.ndarray, ...]:
     return _exponentials_of(lam, h)
 
 
+# more blocks than this (a Monte Carlo's drawn bats, each a block of its own) have their
+# exponentials evaluated in one call over all of them, not one (cached) call per block: the
+# phi functions' series cost the same for one row as for thousands
+FEW_BLOCKS = 8
+
+
+def _block_exponentials(lam: np.ndarray, h: float, spans, shared: list[bool]) -> list[tuple]:
+    """:func:`_exponentials` of each block: of its one row when its rows share their modes,
+    else of every row. The values do not depend on how the blocks are grouped (element by
+    element)."""
+    rows = [(a, a + 1) if same else (a, b) for (a, b), same in zip(spans, shared, strict=True)]
+    if len(rows) <= FEW_BLOCKS:
+        return [_exponentials(lam[a:b], h) for a, b in rows]
+    every = _exponentials_of(np.concatenate([lam[a:b] for a, b in rows]), h)
+    bounds = np.cumsum([0] + [b - a for a, b in rows])
+    return [tuple(x[i:j] for x in every) for i, j in zip(bounds[:-1], bounds[1:], strict=True)]
+
+
 def _exponentials_of(lam: np.ndarray, h: float) -> tuple[np.ndarray, ...]:
     return (np.exp(lam * h), np.exp(lam * h / 2), *phi_functions(lam * h),
             0.5 * h * phi_functions(lam * h / 2)[0])
@@ -89,10 +107,13 @@ def coefficients(system: LinearSystem, h: float) -> Coefficients:
     # the exponentials depend on the frequencies and damping only: once per block of rows
     # that share them (one bat); each block's propagator, read-out and forcing, (1 or rows, ..)
     blocks = []
-    for a, b in system.blocks or ((0, n),):
-        same = bool(np.all(om[a:b] == om[a:a + 1])) and bool(np.all(zeta[a:b] == zeta[a]))
+    spans = system.blocks or ((0, n),)
+    shared = [bool(np.all(om[a:b] == om[a:a + 1])) and bool(np.all(zeta[a:b] == zeta[a]))
+              for a, b in spans]
+    exponentials = _block_exponentials(lam, h, spans, shared)
+    for (a, b), same, (e1, e2, p1, p2, p3, q_half) in zip(spans, shared, exponentials,
+                                                          strict=True):
         lam_b = lam[a:a + 1] if same else lam[a:b]
-        e1, e2, p1, p2, p3, q_half = _exponentials(lam_b, h)
         ka[a:b] = -(cg[a:b] * q_half.imag).sum(1)
         c0[a:b] = -(cg[a:b] * (e2 * q_half).imag).sum(1) - ka[a:b]
         # Z_new = e1 Z + forcing @ (F0, Fa + Fb, Fc)  (Cox & Matthews 2002, Eq. 26)

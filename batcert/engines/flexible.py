@@ -54,6 +54,7 @@ import numpy as np
 
 from batcert.engines import passes
 from batcert.engines.base import ImpactBatch, ImpactOutcome, Job
+from batcert.engines.flexible_family import linear_systems
 from batcert.engines.flexible_outcome import Prepared, outcome
 from batcert.engines.flexible_system import (
     SUPPORTS,
@@ -298,16 +299,15 @@ class FlexibleEngine:
     def _prepare(self, jobs: list[Job]) -> list[Prepared]:
         """Each job with its linear system: the jobs of one bat, ball, pivot and support share
         one (a bat's patches and barrel are read for all their rows at once), split back per
-        job."""
+        job; the bats of a family (a Monte Carlo's draws) are built together
+        (:mod:`batcert.engines.flexible_family`)."""
         ready: dict[int, Prepared] = {}
         groups = list(self._alike(jobs).values())
         compressions = self._compressions(jobs, groups)
-        for members, compression in zip(groups, compressions, strict=True):
-            first = jobs[members[0]]
-            system, extras = self.linear_system(
-                first.bat, first.ball, first.pivot,
-                passes.concatenate([jobs[i].batch for i in members]), first.support,
-                first.modes, compression)
+        merged = [jobs[m[0]].with_batch(passes.concatenate([jobs[i].batch for i in m]))
+                  for m in groups]
+        built = linear_systems(self.system_settings(), merged, compressions)
+        for members, (system, extras) in zip(groups, built, strict=True):
             start = 0
             for i in members:
                 a, b = start, start + len(jobs[i].batch)

@@ -160,48 +160,81 @@ def linear_system(s: SystemSettings, bat: BatModel, ball: BallModel, pivot: floa
     (:meth:`batcert.engines.flexible.FlexibleEngine.linear_system`)."""
     check_batch(bat, pivot, batch, support)
     z = pivot + batch.impact_location
+    modes = checked_modes(s, bat, support, pivot, modes)
+    recoil = rigid.recoil_factor(bat, ball.mass, pivot, batch.impact_location, support)
+    patch = patch_of(s, bat, ball, z, batch.relative_speed, recoil, compression)
+    phi, residual = workspace.current().call(  # the beam alone: barrel variants share it
+        "beam-response", beam_response, beam_of(bat), modes, patch.points, patch.weights,
+        bool(s.residual), rows=patch.points.shape[0])
+    shell = None
+    if bat.construction == "hollow":
+        from batcert.physics import barrel
+        walls = barrel.cached_barrel_modes(bat, s.shell_max_frequency)
+        if walls is not None:
+            shell = shell_table(barrel.barrel_patch(walls, patch.points, patch.weights), patch)
+    nr = modes.n_rigid
+    system, om_res = assemble(s, patch, phi, residual, shell,
+                              np.broadcast_to(modes.omega[nr:], (z.size, phi.shape[1] - nr)),
+                              np.full(z.size, damping_ratio(bat)), np.full(z.size, ball.mass))
+    return system, Extras(modes, phi, phi.shape[1] - nr, 1.0 / (phi[:, :nr] ** 2).sum(1),
+                          patch.scale, bat.wall_thickness[bat.slice_at(z)],
+                          np.zeros(z.size) if shell is None else shell[2],
+                          0 if shell is None else shell[0].omega.shape[-1],
+                          float(om_res[0]) if om_res.size else 0.0)
+
+
+def checked_modes(s: SystemSettings, bat: BatModel, support: str, pivot: float,
+                  modes: Modes | None) -> Modes:
+    """``modes``, or the bat's own (cached) when None; refuses modes of another support or
+    pivot."""
     if modes is None:
         from batcert.physics.modes import cached_modes
         modes = cached_modes(bat, support, pivot, s.n_modes, s.refine)
     if modes.support != support or (support == "pinned" and abs(modes.pivot - pivot) > 1e-9):
         raise ValueError(f"modes are for support {modes.support!r} at {modes.pivot} m, "
                          f"not {support!r} at {pivot} m")
+    return modes
+
+
+def damping_ratio(bat: BatModel) -> float:
+    """Every flexible mode's ``zeta``, half the material's loss factor (module notes)."""
     zeta = 0.5 * bat.material.loss_factor
     if not 0 <= zeta < 1:
         raise ValueError(f"loss factor {bat.material.loss_factor} out of range [0, 2)")
-    recoil = rigid.recoil_factor(bat, ball.mass, pivot, batch.impact_location, support)
-    patch = patch_of(s, bat, ball, z, batch.relative_speed, recoil, compression)
-    phi, residual = workspace.current().call(  # the beam alone: barrel variants share it
-        "beam-response", beam_response, beam_of(bat), modes, patch.points, patch.weights,
-        bool(s.residual), rows=patch.points.shape[0])
-    nr = modes.n_rigid
-    gain, omega = phi[:, nr:], np.broadcast_to(modes.omega[nr:], (z.size, phi.shape[1] - nr))
+    return zeta
+
+
+def assemble(s: SystemSettings, patch: Patch, phi: np.ndarray, residual: np.ndarray, shell,
+             bending: np.ndarray, zeta: np.ndarray, ball_mass: np.ndarray
+             ) -> tuple[LinearSystem, np.ndarray]:
+    """The :class:`LinearSystem` of impacts whose beam modes read ``phi`` (rigid first) over
+    their patches, with frequencies ``bending`` (p, bending modes), the beam's residual
+    compliance, and a hollow barrel's :func:`shell_table` (None: solid); and each row's
+    residual pseudo-mode frequency [rad/s], (p,) (zeros without ``s.residual``)."""
+    p = phi.shape[0]
+    nr = phi.shape[1] - bending.shape[1]
+    gain, omega = phi[:, nr:], bending
     n_bending = omega.shape[1]
-    shell = _shell(s, bat, patch)
-    coupling, n_shell, static = None, 0, np.zeros(z.size)
+    coupling, n_shell = None, 0
     if shell is not None:  # the shell's modes, their gains following the footprint's arc
-        bpatch, table, static = shell
-        n_shell = bpatch.omega.size
+        bpatch, table, _ = shell
+        n_shell = bpatch.axial.shape[1]
         gain = np.concatenate([gain, bpatch.axial], axis=1)
         omega = np.concatenate([omega, np.broadcast_to(bpatch.omega, bpatch.axial.shape)], 1)
         coupling = _coupling(bpatch, table, omega.shape[1], n_bending,
                              residual if s.residual else None, patch)
         residual = residual + table["residual"][:, _REFERENCE] if s.residual else residual
-    om_res = 0.0
+    om_res = np.zeros(p)
     if s.residual:
-        om_res = 2.0 * float(omega.max(initial=modes.omega[-1]))
+        om_res = 2.0 * np.concatenate([omega, bending[:, -1:]], axis=1).max(axis=1)
         gain = _column(gain, om_res * np.sqrt(residual))
-        omega = _column(omega, np.full(z.size, om_res))
+        omega = _column(omega, om_res)
     shell_cols = np.zeros(omega.shape[1], bool)
     shell_cols[n_bending:n_bending + n_shell] = True
-    rigid_mass = 1.0 / (phi[:, :nr] ** 2).sum(1)
-    system = LinearSystem(omega=np.ascontiguousarray(omega), zeta=np.full(z.size, zeta),
-                          gain=np.ascontiguousarray(gain), rigid_mass=rigid_mass,
-                          ball_mass=np.full(z.size, ball.mass),
-                          shell_columns=shell_cols if shell is not None else None,
-                          coupling=coupling)
-    return system, Extras(modes, phi, n_bending, rigid_mass, patch.scale,
-                          bat.wall_thickness[bat.slice_at(z)], static, n_shell, om_res)
+    return LinearSystem(omega=np.ascontiguousarray(omega), zeta=zeta,
+                        gain=np.ascontiguousarray(gain), rigid_mass=1.0 / (phi[:, :nr] ** 2).sum(1),
+                        ball_mass=ball_mass, shell_columns=shell_cols if shell is not None else None,
+                        coupling=coupling), om_res
 
 
 def beam_response(bat: BatModel, modes: Modes, points: np.ndarray, weights: np.ndarray,
@@ -220,18 +253,11 @@ def beam_response(bat: BatModel, modes: Modes, points: np.ndarray, weights: np.n
     return phi, compliance
 
 
-def _shell(s: SystemSettings, bat: BatModel, patch: Patch):
-    """A hollow bat's wall under each impact's footprint (module notes of the engine), on the
-    grid of compressions :data:`_GRID` x ``u_rep`` the footprint's half-angle around the
-    barrel and the shell's residual compliance under it, and its static compliance at
-    ``u_rep``; None for a solid bat."""
-    if bat.construction != "hollow":
-        return None
-    from batcert.physics import barrel
-    modes = barrel.cached_barrel_modes(bat, s.shell_max_frequency)
-    if modes is None:
-        return None
-    bpatch = barrel.barrel_patch(modes, patch.points, patch.weights)
+def shell_table(bpatch, patch: Patch):
+    """A hollow bat's wall under each impact's footprint (module notes of the engine): its
+    :class:`~batcert.physics.barrel.BarrelPatch`, on the grid of compressions :data:`_GRID` x
+    ``u_rep`` the footprint's half-angle around the barrel, every order's factor and the
+    shell's residual compliance under it, and its static compliance at ``u_rep``."""
     angles = patch.half_angle(_GRID[None, :] * patch.compression[:, None])  # (p, grid)
     factors, residual, static = bpatch.over(angles)
     table = {"angle": angles, "factors": factors, "residual": residual}

@@ -39,6 +39,7 @@ from batcert.physics.barrel.patch import (
     barrel_response,
     patch_half_angle,
 )
+from batcert.physics.barrel.shared import shared_wall
 from batcert.physics.barrel.wall import (
     DYNAMIC_ORDERS,
     MAX_FREQUENCY,
@@ -56,5 +57,5 @@ from batcert.physics.barrel.wall import (
 __all__ = ["DYNAMIC_ORDERS", "MAX_FREQUENCY", "NOMINAL_CUT", "PATCH_SPAN", "STATIC_ORDERS",
            "BarrelModes", "BarrelPatch", "BarrelResponse", "PatchLoads", "barrel_patch",
            "barrel_response", "barrel_shell", "cached_barrel_modes", "compression_stiffness",
-           "compute_barrel_modes", "hoop_frequency", "patch_half_angle", "shell_modes",
-           "wall_of"]
+           "compute_barrel_modes", "hoop_frequency", "patch_half_angle", "shared_wall",
+           "shell_modes", "wall_of"]

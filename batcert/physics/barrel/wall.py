@@ -273,6 +273,19 @@ def cached_barrel_modes(bat: BatModel, max_frequency: float = MAX_FREQUENCY,
 
 def _scaled_wall(bat: BatModel, max_frequency: float, dynamic_orders: int,
                  static_orders: int) -> BarrelModes | None:
+    found = nominal_of(bat, max_frequency, dynamic_orders, static_orders)
+    if found is None:
+        return None
+    base, s_k, s_m = found
+    shell = barrel_shell(bat)
+    assert shell is not None
+    return base.scaled(shell, s_k, s_m, float(max_frequency))
+
+
+def nominal_of(bat: BatModel, max_frequency: float, dynamic_orders: int, static_orders: int
+                ) -> tuple[BarrelModes, float, float] | None:
+    """The nominal wall (kept by the workspace, kind ``barrel``) that ``bat``'s is scaled from,
+    and the stiffness and mass scales; None for a solid bat."""
     # a bat whose density is uniformly scaled (reconciled to another measured mass) has the
     # same wall with another mass: the nominal wall has the density relative to its largest
     # value (to 12 digits) times that value rounded to a 1/16 step of its base-2 logarithm (so
@@ -296,9 +309,7 @@ def _scaled_wall(bat: BatModel, max_frequency: float, dynamic_orders: int,
     base = workspace.current().call("barrel", _nominal_wall, nominal, cut, int(dynamic_orders),
                                     int(static_orders), save=_to_arrays,
                                     load=lambda a: _from_arrays(a, cut))
-    shell = barrel_shell(bat)
-    assert shell is not None
-    return base.scaled(shell, s_k, s_m, float(max_frequency))
+    return base, float(s_k), float(s_m)
 
 
 def _nominal_wall(shell: ShellOfRevolution, cut: float, dynamic_orders: int,

@@ -45,7 +45,9 @@ class Modes:
 
 def eigenpairs(k: np.ndarray, m: np.ndarray, n_skip: int,
                 n_want: int) -> tuple[np.ndarray, np.ndarray]:
-    """Eigenpairs ``n_skip .. n_skip + n_want - 1`` (ascending) of ``k x = lam m x``.
+    """Eigenpairs ``n_skip .. n_skip + n_want - 1`` (ascending) of ``k x = lam m x``; ``k``
+    and ``m`` may be stacks of matrices, (..., n, n), solved together (a Monte Carlo's drawn
+    bats, :mod:`batcert.physics.ritz`).
 
     Dense, with numpy only (a bat has a few hundred DOFs; LAPACK through numpy avoids importing
     scipy on the run path): ``m = L L^T``, ``L^-1 k L^-T y = lam y``, ``x = L^-T y``. Vectors
@@ -53,11 +55,11 @@ def eigenpairs(k: np.ndarray, m: np.ndarray, n_skip: int,
     """
     low = np.linalg.cholesky(m)
     inv_low = np.linalg.inv(low)  # triangular and small; numpy has no triangular solve
-    a = inv_low @ k @ inv_low.T
-    lam, y = np.linalg.eigh(0.5 * (a + a.T))
-    lam, y = lam[n_skip:n_skip + n_want], y[:, n_skip:n_skip + n_want]
-    vec = inv_low.T @ y
-    vec = vec / np.sqrt(np.einsum("di,di->i", vec, m @ vec))
+    a = inv_low @ k @ np.swapaxes(inv_low, -1, -2)
+    lam, y = np.linalg.eigh(0.5 * (a + np.swapaxes(a, -1, -2)))
+    lam, y = lam[..., n_skip:n_skip + n_want], y[..., n_skip:n_skip + n_want]
+    vec = np.swapaxes(inv_low, -1, -2) @ y
+    vec = vec / np.sqrt(np.einsum("...di,...di->...i", vec, m @ vec))[..., None, :]
     return lam, vec
 
 
@@ -118,9 +120,10 @@ def compute_modes(bat: BatModel, support: str, pivot: float, n_modes: int = 24,
 
 
 def tip_positive(vectors: np.ndarray) -> np.ndarray:
-    """Mode vectors on the full DOF vector, (2 n_nodes, n), each signed so that its transverse
-    displacement at the tip (the last node's ``w``) is positive: the modes' sign convention."""
-    return vectors * np.where(vectors[-2] < 0, -1.0, 1.0)
+    """Mode vectors on the full DOF vector, (..., 2 n_nodes, n), each signed so that its
+    transverse displacement at the tip (the last node's ``w``) is positive: the modes' sign
+    convention."""
+    return vectors * np.where(vectors[..., -2:-1, :] < 0, -1.0, 1.0)
 
 
 def full_vectors(modes: Modes) -> np.ndarray:

@@ -51,8 +51,8 @@ def ritz_modes(bat: BatModel, basis: Modes, flexibility: np.ndarray | None,
     bend = np.zeros((2 * fe.z.size, lam.size))
     bend[keep] = v @ y
     bend = tip_positive(bend)
-    return _with_flexibility(basis, flexibility, rigid, bend,
-                             np.sqrt(np.clip(lam, 0.0, None)), n_modes)
+    return _with_flexibility(basis, flexibility, rigid[None], bend[None],
+                             np.sqrt(np.clip(lam, 0.0, None))[None], n_modes)[0]
 
 
 @dataclass(frozen=True)
@@ -112,53 +112,84 @@ def ritz_basis(bat: BatModel, support: str, pivot: float, n_basis: int,
 
 
 def reduced_modes(rb: RitzBasis, bat: BatModel, n_modes: int) -> Modes:
-    """:func:`ritz_modes` of ``bat`` on ``rb``; when ``bat`` has the nominal's stiffness and
-    point-mass positions (a draw of its mass properties), from the stored projections without
-    assembling anything (the same result to rounding, tests/physics/test_ritz.py)."""
-    pm = np.asarray(bat.point_masses, dtype=float).reshape(-1, 2)
-    if not (np.array_equal(bat.bending_stiffness, rb.bending_stiffness)
-            and np.array_equal(bat.shear_stiffness, rb.shear_stiffness)
-            and tuple(pm[:, 0]) == rb.point_mass_positions):
-        return ritz_modes(bat, rb.basis, None, n_modes)
-    basis = rb.basis
+    """:func:`reduced_modes_many` of one bat."""
+    return reduced_modes_many(rb, [bat], n_modes)[0]
+
+
+def reduced_modes_many(rb: RitzBasis, bats: list[BatModel], n_modes: int) -> list[Modes]:
+    """:func:`ritz_modes` of each of ``bats`` on ``rb``. The bats that have the nominal's
+    stiffness and point-mass positions (draws of mass properties) are solved together from the
+    stored projections, without assembling anything: one stack of small eigenproblems (the same
+    result to rounding as :func:`ritz_modes`, tests/physics/test_ritz.py); the others one by
+    one."""
+    out: list[Modes | None] = [None] * len(bats)
+    fast = []
+    for i, bat in enumerate(bats):
+        pm = np.asarray(bat.point_masses, dtype=float).reshape(-1, 2)
+        if (np.array_equal(bat.bending_stiffness, rb.bending_stiffness)
+                and np.array_equal(bat.shear_stiffness, rb.shear_stiffness)
+                and tuple(pm[:, 0]) == rb.point_mass_positions):
+            fast.append(i)
+        else:
+            out[i] = ritz_modes(bat, rb.basis, None, n_modes)
+    if fast:
+        for i, modes in zip(fast, _mass_draws(rb, [bats[i] for i in fast], n_modes),
+                            strict=True):
+            out[i] = modes
+    return out  # type: ignore[return-value]
+
+
+def _mass_draws(rb: RitzBasis, bats: list[BatModel], n_modes: int) -> list[Modes]:
+    """:func:`reduced_modes_many` of bats that differ from the nominal in their masses only:
+    ``M`` projected from the per-element projections, stacked (bats, n_w, n_w)."""
     s = rb.slice_of_element
-    m = (np.tensordot(np.asarray(bat.linear_density)[s], rb.unit_translation, 1)
-         + np.tensordot(np.asarray(bat.rotary_inertia)[s], rb.unit_rotation, 1))
+    m = (np.tensordot(np.stack([np.asarray(b.linear_density)[s] for b in bats]),
+                      rb.unit_translation, 1)
+         + np.tensordot(np.stack([np.asarray(b.rotary_inertia)[s] for b in bats]),
+                        rb.unit_rotation, 1))
     wp = rb.vectors[rb.point_rows]  # (points, n_w)
-    m += (wp.T * pm[:, 1]) @ wp
-    m = 0.5 * (m + m.T)
-    nr = basis.n_rigid
-    lam, y = eigenpairs(rb.stiffness, m, nr, m.shape[0] - nr)
+    masses = np.stack([np.asarray(b.point_masses, dtype=float).reshape(-1, 2)[:, 1]
+                       for b in bats])  # (bats, points)
+    m += np.einsum("pi,bp,pj->bij", wp, masses, wp)
+    m = 0.5 * (m + np.swapaxes(m, 1, 2))
+    nr = rb.basis.n_rigid
+    lam, y = eigenpairs(rb.stiffness, m, nr, m.shape[1] - nr)
+    e = np.eye(m.shape[1])
     if nr == 1:
-        rigid_y = np.eye(m.shape[0])[:, :1] / np.sqrt(m[0, 0])
+        rigid_y = e[None, :, :1] / np.sqrt(m[:, :1, :1])
     else:  # translation, then rotation about the CG (beam.rigid_modes)
-        e = np.eye(m.shape[0])
-        z_cg = m[0, 1] / m[0, 0]
-        rot = e[:, 1] - z_cg * e[:, 0]
-        rigid_y = np.stack([e[:, 0] / np.sqrt(m[0, 0]), rot / np.sqrt(rot @ m @ rot)], axis=1)
+        z_cg = m[:, 0, 1] / m[:, 0, 0]
+        rot = e[1][None, :] - z_cg[:, None] * e[0][None, :]  # (bats, n_w)
+        norm = np.sqrt(np.einsum("bi,bij,bj->b", rot, m, rot))
+        rigid_y = np.stack([e[0][None, :] / np.sqrt(m[:, :1, 0]), rot / norm[:, None]],
+                           axis=2)
     bend = tip_positive(rb.vectors @ y)
     omega_all = np.sqrt(np.clip(lam, 0.0, None))
-    return _with_flexibility(basis, rb.flexibility, rb.vectors @ rigid_y, bend, omega_all,
+    return _with_flexibility(rb.basis, rb.flexibility, rb.vectors @ rigid_y, bend, omega_all,
                              n_modes)
 
 
 def _with_flexibility(basis: Modes, flexibility: np.ndarray | None, rigid: np.ndarray,
-                      bend: np.ndarray, omega_all: np.ndarray, n_modes: int) -> Modes:
-    """Modes from full-vector rigid and bending modes, with the flexibility estimated as in
-    :func:`ritz_modes` (None: the residual compliance solves for it)."""
+                      bend: np.ndarray, omega_all: np.ndarray, n_modes: int) -> list[Modes]:
+    """Modes from full-vector rigid and bending modes, stacked (bats, 2 n_nodes, .) with their
+    frequencies (bats, .), with the flexibility estimated as in :func:`ritz_modes` (None: the
+    residual compliance solves for it)."""
     nr = basis.n_rigid
-    flex = None
+    flex: list[np.ndarray | None] = [None] * bend.shape[0]
     if flexibility is not None:
         old = basis.shapes[nr:]
-        shapes_all = bend[0::2]
-        flex = (flexibility - (old.T * _compliance(basis.omega[nr:])) @ old
-                + (shapes_all * _compliance(omega_all)) @ shapes_all.T)
-        flex = 0.5 * (flex + flex.T)
-    phi = np.concatenate([rigid, bend[:, :n_modes]], axis=1).T
-    return Modes(support=basis.support, pivot=basis.pivot, z=basis.z,
-                 omega=np.concatenate([np.zeros(nr), omega_all[:n_modes]]),
-                 shapes=np.ascontiguousarray(phi[:, 0::2]),
-                 rotations=np.ascontiguousarray(phi[:, 1::2]), n_rigid=nr, flexibility=flex)
+        shapes_all = bend[:, 0::2]
+        est = (flexibility - (old.T * _compliance(basis.omega[nr:])) @ old
+               + (shapes_all * _compliance(omega_all)[:, None, :])
+               @ np.swapaxes(shapes_all, 1, 2))
+        flex = list(0.5 * (est + np.swapaxes(est, 1, 2)))
+    phi = np.swapaxes(np.concatenate([rigid, bend[:, :, :n_modes]], axis=2), 1, 2)
+    omega = np.concatenate([np.zeros((bend.shape[0], nr)), omega_all[:, :n_modes]], axis=1)
+    return [Modes(support=basis.support, pivot=basis.pivot, z=basis.z, omega=omega[i],
+                  shapes=np.ascontiguousarray(phi[i, :, 0::2]),
+                  rotations=np.ascontiguousarray(phi[i, :, 1::2]), n_rigid=nr,
+                  flexibility=flex[i])
+            for i in range(bend.shape[0])]
 
 
 def _compliance(omega: np.ndarray) -> np.ndarray:

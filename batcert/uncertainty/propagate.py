@@ -22,7 +22,10 @@ at the sweet spot of a hollow bat by up to about 1e-3 (docs/validation.md, secti
 A hollow bat's barrel is computed once and scaled for a drawn mass or hoop frequency (exact);
 a drawn wall is a new barrel, which costs about a quarter of a second per draw. The draws are
 solved in chunks of :data:`CHUNK`, all protocols and draws of a chunk in the same engine
-batches (:func:`batcert.runner.bench.drive`).
+batches (:func:`batcert.runner.bench.drive`), and their set-up is shared: the chunk's Ritz
+eigenproblems are solved as one stack (:func:`~batcert.physics.ritz.reduced_modes_many`), and
+the engine builds the linear systems of the drawn bats and balls together, their barrel read
+once on the wall they share (:mod:`batcert.engines.flexible_family`).
 """
 
 from __future__ import annotations
@@ -76,8 +79,8 @@ def monte_carlo(built: BuiltBat, jobs: list[Job], engine: Engine, samples: int,
     inputs, z = draws(built.spec, balls, samples, seed)
     reducer = _Reducer(built, engine)
     nominal = drive([fit_steps(b, j.protocol, j.nominal) for b, j in zip(
-        _benches(built, jobs, engine, inputs, np.zeros(len(inputs)), reducer, -1), jobs,
-        strict=True)], engine)
+        _benches(built, jobs, engine, inputs, np.zeros((1, len(inputs))), reducer, -1)[0],
+        jobs, strict=True)], engine)
     values = np.zeros((samples, len(jobs)))
     shift = np.zeros(len(jobs))  # the largest move of a draw's impact point [m]
     if on_progress:
@@ -87,9 +90,8 @@ def monte_carlo(built: BuiltBat, jobs: list[Job], engine: Engine, samples: int,
     for start in range(0, samples, chunk):
         rows = z[start:start + chunk]
         fits = drive([fit_steps(b, j.protocol, j.nominal)
-                      for i, row in enumerate(rows)
-                      for b, j in zip(_benches(built, jobs, engine, inputs, row, reducer,
-                                               start + i), jobs, strict=True)], engine)
+                      for benches in _benches(built, jobs, engine, inputs, rows, reducer, start)
+                      for b, j in zip(benches, jobs, strict=True)], engine)
         for k, fit in enumerate(fits):
             i, n = divmod(k, len(jobs))
             values[start + i, n], x = drawn_result(jobs[n].protocol, jobs[n].nominal,
@@ -149,33 +151,41 @@ class _Reducer:
             self.method += (f"; bending modes by Rayleigh-Ritz on the nominal bat's "
                             f"{BASIS_MODES} modes")
 
-    def modes(self, model, support: str, pivot: float):
+    def modes(self, models: list, support: str, pivot: float) -> list:
+        """The modes of the drawn bats ``models`` (one Ritz solve for them all), or None for
+        each where the engine computes its own."""
         if not self.flexible:
-            return None
-        from batcert.physics.ritz import reduced_modes, ritz_basis
+            return [None] * len(models)
+        from batcert.physics.ritz import reduced_modes_many, ritz_basis
         key = (support, float(pivot))
         flexible: Any = self.engine  # a FlexibleEngine (checked above)
         if key not in self.bases:
             self.bases[key] = ritz_basis(self.built.model, support, pivot, BASIS_MODES,
                                          flexible.refine)[0]
-        return reduced_modes(self.bases[key], model, flexible.n_modes)
+        return reduced_modes_many(self.bases[key], models, flexible.n_modes)
 
 
 def _benches(built: BuiltBat, jobs: list[Job], engine: Engine, inputs: list[StatedInput],
-             row: np.ndarray, reducer: _Reducer, index: int) -> list[Bench]:
-    """The bat and balls of one row of draws on the bench of each job (``index``: the draw's
-    number, -1 for the nominal inputs)."""
-    bat, balls = sampled(built.spec, [j.ball for j in jobs], inputs, row)
-    try:
-        drawn = build_bat(bat)
-    except InputError as exc:
-        where = "the nominal inputs" if index < 0 else f"draw {index + 1}"
-        raise InputError([replace(p, message=f"{p.message} (in {where} of the Monte Carlo, "
-                                  "from the stated uncertainties)")
-                          for p in exc.problems]) from None
-    return [Bench(drawn, ball, engine, j.protocol.pivot, j.protocol.support,
-                  reducer.modes(drawn.model, j.protocol.support, j.protocol.pivot))
-            for j, ball in zip(jobs, balls, strict=True)]
+             rows: np.ndarray, reducer: _Reducer, first: int) -> list[list[Bench]]:
+    """For each row of draws ``rows``, its bat and balls on the bench of each job (``first``:
+    the first row's draw number, -1 for the nominal inputs)."""
+    drawn, balls = [], []
+    for i, row in enumerate(rows):
+        bat, row_balls = sampled(built.spec, [j.ball for j in jobs], inputs, row)
+        try:
+            drawn.append(build_bat(bat))
+        except InputError as exc:
+            where = "the nominal inputs" if first < 0 else f"draw {first + i + 1}"
+            raise InputError([replace(p, message=f"{p.message} (in {where} of the Monte "
+                                      "Carlo, from the stated uncertainties)")
+                              for p in exc.problems]) from None
+        balls.append(row_balls)
+    modes = {(j.protocol.support, j.protocol.pivot): reducer.modes(
+        [d.model for d in drawn], j.protocol.support, j.protocol.pivot) for j in jobs}
+    return [[Bench(d, ball, engine, j.protocol.pivot, j.protocol.support,
+                   modes[(j.protocol.support, j.protocol.pivot)][i])
+             for j, ball in zip(jobs, row_balls, strict=True)]
+            for i, (d, row_balls) in enumerate(zip(drawn, balls, strict=True))]
 
 
 def _summary(job: Job, inputs: list[StatedInput], z: np.ndarray, values: np.ndarray, seed: int,

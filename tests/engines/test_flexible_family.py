@@ -11,6 +11,7 @@ change moves it by about 1e-3).
 
 from __future__ import annotations
 
+import copy as copy_module
 import dataclasses
 
 import numpy as np
@@ -65,6 +66,7 @@ def exit_speeds_alone_and_together(engine, jobs):
 
 
 @pytest.mark.parametrize("bat,protocol", [("aluminium-34", "ncaa-bbcor"),
+                                          ("composite-bbcor-34", "ncaa-bbcor"),
                                           ("ash-34", "proposed")])
 def test_a_family_of_drawn_masses_and_balls_is_each_member_alone(bat, protocol, monkeypatch):
     engine, jobs = members(bat, protocol, [1.0, 0.997, 1.004, 1.001],
@@ -116,3 +118,21 @@ def test_shared_wall_gives_each_bats_mass_scale():
         own = barrel.cached_barrel_modes(bat)
         scaled = base.scaled(barrel.barrel_shell(bat), stiffness, m, barrel.MAX_FREQUENCY)
         np.testing.assert_allclose(scaled.omega, own.omega, rtol=1e-12)
+
+
+def test_a_drawn_composite_wall_with_its_own_copy_of_the_layup_shares_the_wall():
+    # each drawn bat is built anew, so its layup is an equal copy, not the same object: the
+    # walls are compared by value (a layup of another ply angle is another wall)
+    nominal = load_bat_any("composite-bbcor-34").built.model
+    assert nominal.layup is not None
+    copy = dataclasses.replace(nominal, layup=copy_module.deepcopy(nominal.layup),
+                               linear_density=np.asarray(nominal.linear_density) * 1.003)
+    assert barrel.shared_wall([nominal, copy]) is not None
+    stack = nominal.layup.stacks[0]
+    first, *rest = stack.walls[0]
+    turned = dataclasses.replace(first, angle=first.angle + 0.1)
+    other = dataclasses.replace(nominal, layup=dataclasses.replace(
+        nominal.layup, stacks=(dataclasses.replace(stack, walls=((turned, *rest),
+                                                                 *stack.walls[1:])),
+                               *nominal.layup.stacks[1:])))
+    assert barrel.shared_wall([nominal, other]) is None

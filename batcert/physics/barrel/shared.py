@@ -4,7 +4,7 @@ up per bat."""
 
 from __future__ import annotations
 
-from dataclasses import fields
+from dataclasses import fields, is_dataclass
 
 import numpy as np
 
@@ -54,17 +54,22 @@ def _density_ratio(a: BatModel, b: BatModel) -> float | None:
     ratio = float(db.max() / da.max())
     if not np.allclose(db, ratio * da, rtol=1e-12, atol=0.0):
         return None
-    for f in fields(a):
-        x, y = getattr(a, f.name), getattr(b, f.name)
-        if f.name == "linear_density" or x is y:
-            continue
-        if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
-            if not np.array_equal(x, y):
-                return None
-            continue
-        try:
-            if not bool(x == y):
-                return None
-        except ValueError:  # a field holding arrays: not known to be equal
-            return None
-    return ratio
+    return ratio if all(f.name == "linear_density"
+                        or _same(getattr(a, f.name), getattr(b, f.name)) for f in fields(a)) else None
+
+
+def _same(x, y) -> bool:
+    """``x`` and ``y`` hold equal values: arrays element by element, dataclasses (a layup) and
+    sequences member by member."""
+    if x is y:
+        return True
+    if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
+        return bool(np.array_equal(x, y))
+    if is_dataclass(x) and type(x) is type(y):
+        return all(_same(getattr(x, f.name), getattr(y, f.name)) for f in fields(x))
+    if isinstance(x, (tuple, list)) and isinstance(y, (tuple, list)):
+        return len(x) == len(y) and all(_same(p, q) for p, q in zip(x, y, strict=True))
+    try:
+        return bool(x == y)
+    except ValueError:  # something else that holds arrays: not known to be equal
+        return False

@@ -191,18 +191,44 @@ class HarmonicModes:
 
 def harmonic_modes(shell: ShellOfRevolution, n: int, max_frequency: float,
                    system: HarmonicSystem | None = None) -> HarmonicModes:
-    """Elastic modes of order ``n`` up to ``max_frequency`` [Hz] (dense generalized
-    eigenproblem); ``system`` may be passed if it is the unsupported one of :func:`assemble`."""
-    import scipy.linalg  # hollow bats only: ~0.15 s to import
-
+    """Elastic modes of order ``n`` up to ``max_frequency`` [Hz]: counted and found on the
+    banded matrices (:mod:`batcert.physics.band_modes`), or by the dense generalized
+    eigenproblem where that does not settle; ``system`` may be passed if it is the unsupported
+    one of :func:`assemble`."""
     sys_ = system if system is not None and system.rigid is None else assemble(shell, n)
-    lam, vec = scipy.linalg.eigh(sys_.stiffness, sys_.mass, check_finite=False, driver="gvx",
-                                 subset_by_value=(-np.inf, (2 * np.pi * max_frequency) ** 2))
+    cut = (2 * np.pi * max_frequency) ** 2
+    lam, vec = _modes_below(sys_, shell.z.size, cut)
     elastic = lam > (2 * np.pi * 1.0) ** 2  # drop order 0's rigid axial translation
     lam, vec = lam[elastic], vec[:, elastic]
     full = np.zeros((sys_.node_dofs * shell.z.size, lam.size))
     full[sys_.free] = vec
     return HarmonicModes(n, np.sqrt(np.clip(lam, 0.0, None)), full)
+
+
+def _modes_below(system: HarmonicSystem, n_nodes: int, cut: float
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """The eigenpairs of ``system`` below ``cut`` [rad^2/s^2]: banded count and Lanczos, else
+    the dense solve (:func:`dense_modes_below`)."""
+    from batcert.physics.band_modes import count_below, lowest_modes
+
+    k, m = system.stiffness, system.mass
+    count = count_below((k - cut * m)[None], system.free, system.node_dofs, n_nodes)
+    if count is not None:
+        if int(count[0]) == 0:
+            return np.zeros(0), np.zeros((k.shape[0], 0))
+        found = lowest_modes(k, m, cut, 2 * system.node_dofs - 1, int(count[0]))
+        if found is not None:
+            return found
+    return dense_modes_below(system, cut)
+
+
+def dense_modes_below(system: HarmonicSystem, cut: float) -> tuple[np.ndarray, np.ndarray]:
+    """The eigenpairs of ``system`` below ``cut`` [rad^2/s^2] by the dense generalized
+    eigenproblem (LAPACK ``dsygvx``), mass-normalised: the reference of the banded path."""
+    import scipy.linalg  # hollow bats only: ~0.15 s to import
+
+    return scipy.linalg.eigh(system.stiffness, system.mass, check_finite=False, driver="gvx",
+                             subset_by_value=(-np.inf, cut))
 
 
 def normal_reader(shell: ShellOfRevolution, n: int, z: np.ndarray):

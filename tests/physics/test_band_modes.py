@@ -68,13 +68,13 @@ def test_banded_modes_are_the_dense_modes(name, factor):
 
 
 def test_count_below_counts_the_eigenvalues():
-    # a diagonal pencil of two nodes of two unknowns: eigenvalues 1, 2, 3, 4
-    k, m = np.diag([1.0, 2.0, 3.0, 4.0]), np.eye(4)
-    free = np.arange(4)
-    for lam, expected in ((0.5, 0), (1.5, 1), (3.5, 3), (10.0, 4)):
-        assert int(count_below((k - lam * m)[None], free, 2, 2)[0]) == expected
-    # the cut on an eigenvalue of the first node: its pivot block is singular, no count
-    assert count_below((k - 2.0 * m)[None], free, 2, 2) is None
+    # a diagonal pencil of ten nodes of one unknown: eigenvalues 1 .. 10, in blocks of four
+    k, m = np.diag(np.arange(1.0, 11.0)), np.eye(10)
+    free = np.arange(10)
+    for lam, expected in ((0.5, 0), (2.5, 2), (6.5, 6), (9.5, 9), (20.0, 10)):
+        assert int(count_below((k - lam * m)[None], free, 1, 10)[0]) == expected
+    # the cut on an eigenvalue inside the first block: a singular pivot block, no count
+    assert count_below((k - 2.0 * m)[None], free, 1, 10) is None
 
 
 def test_lowest_modes_gives_up_rather_than_miss_one():

@@ -100,7 +100,9 @@ def lowest_modes(k: np.ndarray, m: np.ndarray, cut: float, bandwidth: int, count
         mr = m @ w
         norm = beta[j] = float(np.sqrt(max(w @ mr, 0.0)))
         r = w
-        if j + 1 < count or (j + 1 - count) % CHECK_EVERY and j + 1 < steps:
+        if norm == 0.0:  # an invariant subspace: the next step would divide by zero
+            steps = j + 1
+        elif j + 1 < count or (j + 1 - count) % CHECK_EVERY and j + 1 < steps:
             continue
         theta, s = scipy.linalg.eigh_tridiagonal(alpha[:j + 1], beta[:j], check_finite=False)
         wanted = theta >= least
@@ -110,8 +112,8 @@ def lowest_modes(k: np.ndarray, m: np.ndarray, cut: float, bandwidth: int, count
             vectors = q_all[:, :j + 1] @ s[:, wanted]
             order = np.argsort(lam)
             return lam[order], vectors[:, order]
-        if norm == 0.0:  # an invariant subspace, and not all of them in it
-            return None
+        if j + 1 == steps:
+            break
     return None
 
 

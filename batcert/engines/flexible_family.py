@@ -18,6 +18,8 @@ Other jobs, and a family whose members turn out not to share their wall, are bui
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from batcert.engines.base import Job
@@ -29,6 +31,7 @@ from batcert.engines.flexible_system import (
     check_batch,
     checked_modes,
     damping_ratio,
+    extras_of,
     linear_system,
     patch_of,
     shell_table,
@@ -131,12 +134,10 @@ def _built(jobs: list[Job], s: SystemSettings, compressions: list[np.ndarray], w
     system, om_res = assemble(s, patch, phi, residual, shell, bending,
                               np.array([damping_ratio(j.bat) for j in jobs])[which],
                               np.array([j.ball.mass for j in jobs], dtype=float)[which])
-    thickness = first.bat.wall_thickness[first.bat.slice_at(first.pivot + r)]
-    static = np.zeros(r.size) if shell is None else shell[2]
-    n_shell = 0 if shell is None else shell[0].axial.shape[1]
-    return [(system.rows(a, b),
-             Extras(m, phi[a:b], bending.shape[1], system.rigid_mass[a:b], patch.scale[a:b],
-                    thickness[a:b], static[a:b], n_shell, float(om_res[a])))
+    extras = extras_of(modes[0], phi, system, patch,
+                       first.bat.wall_thickness[first.bat.slice_at(first.pivot + r)], shell, 0.0)
+    return [(system.rows(a, b), replace(extras.rows(a, b), modes=m,
+                                        residual_omega=float(om_res[a])))
             for m, a, b in zip(modes, bounds[:-1], bounds[1:], strict=True)]
 
 

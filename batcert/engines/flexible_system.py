@@ -176,11 +176,18 @@ def linear_system(s: SystemSettings, bat: BatModel, ball: BallModel, pivot: floa
     system, om_res = assemble(s, patch, phi, residual, shell,
                               np.broadcast_to(modes.omega[nr:], (z.size, phi.shape[1] - nr)),
                               np.full(z.size, damping_ratio(bat)), np.full(z.size, ball.mass))
-    return system, Extras(modes, phi, phi.shape[1] - nr, 1.0 / (phi[:, :nr] ** 2).sum(1),
-                          patch.scale, bat.wall_thickness[bat.slice_at(z)],
-                          np.zeros(z.size) if shell is None else shell[2],
-                          0 if shell is None else shell[0].omega.shape[-1],
-                          float(om_res[0]) if om_res.size else 0.0)
+    return system, extras_of(modes, phi, system, patch, bat.wall_thickness[bat.slice_at(z)],
+                             shell, float(om_res[0]) if om_res.size else 0.0)
+
+
+def extras_of(modes: Modes, phi: np.ndarray, system: LinearSystem, patch: Patch,
+              wall: np.ndarray, shell, residual_omega: float) -> Extras:
+    """The :class:`Extras` of impacts whose ``system`` :func:`assemble` built from ``phi`` and
+    ``shell`` (its :func:`shell_table`; None for a solid bat); ``wall``: the wall's thickness
+    at each impact [m]."""
+    return Extras(modes, phi, phi.shape[1] - modes.n_rigid, system.rigid_mass, patch.scale,
+                  wall, np.zeros(phi.shape[0]) if shell is None else shell[2],
+                  0 if shell is None else shell[0].axial.shape[1], residual_omega)
 
 
 def checked_modes(s: SystemSettings, bat: BatModel, support: str, pivot: float,

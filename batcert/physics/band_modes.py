@@ -36,31 +36,26 @@ CHECK_EVERY = 4  # Lanczos steps between convergence checks (each an eigen-solve
 
 
 def count_below(shifted: np.ndarray, free: np.ndarray, node_dofs: int, n_nodes: int
-                ) -> np.ndarray | None:
-    """The number of negative eigenvalues of each symmetric ``shifted`` (``K - lam M``,
-    (s, m, m) on the free dofs ``free`` of ``n_nodes`` nodes of ``node_dofs`` unknowns each,
-    coupled between neighbouring nodes only), (s,); None if a pivot block is singular
-    (``lam`` an eigenvalue, to rounding). The factorisation runs over groups of
-    :data:`GROUP_NODES` nodes (still block tridiagonal: fewer, larger steps)."""
-    stack = np.asarray(shifted, dtype=float)
+                ) -> int | None:
+    """The number of negative eigenvalues of the symmetric ``shifted`` (``K - lam M`` on the
+    free dofs ``free`` of ``n_nodes`` nodes of ``node_dofs`` unknowns each, coupled between
+    neighbouring nodes only); None if a pivot block is singular (``lam`` an eigenvalue, to
+    rounding). The factorisation runs over groups of :data:`GROUP_NODES` nodes (still block
+    tridiagonal: fewer, larger steps)."""
+    a = np.asarray(shifted, dtype=float)
     group = (np.asarray(free) // node_dofs) // GROUP_NODES  # each free unknown's group
     bounds = np.searchsorted(group, np.arange(-(-n_nodes // GROUP_NODES) + 1))
-    negative = np.zeros(stack.shape[0], dtype=int)
-    d = None
+    negative = 0
+    d = a[bounds[0]:bounds[1], bounds[0]:bounds[1]]
     try:
-        for a, b, c_end in zip(bounds[:-1], bounds[1:], np.append(bounds[2:], bounds[-1]),
-                               strict=True):
-            if d is None:
-                d = stack[:, a:b, a:b]
-            negative += (np.linalg.eigvalsh(d) < 0).sum(axis=1)
-            if b == c_end:
-                break
-            c = stack[:, a:b, b:c_end]  # the coupling of this group to the next
-            d = stack[:, b:c_end, b:c_end] - np.swapaxes(c, 1, 2) @ np.linalg.solve(d, c)
-            d = 0.5 * (d + np.swapaxes(d, 1, 2))
+        for lo, mid, hi in zip(bounds[:-2], bounds[1:-1], bounds[2:], strict=True):
+            negative += int((np.linalg.eigvalsh(d) < 0).sum())
+            c = a[lo:mid, mid:hi]  # the coupling of this group to the next
+            d = a[mid:hi, mid:hi] - c.T @ np.linalg.solve(d, c)
+            d = 0.5 * (d + d.T)
     except np.linalg.LinAlgError:
         return None
-    return negative
+    return negative + int((np.linalg.eigvalsh(d) < 0).sum())
 
 
 def lowest_modes(k: np.ndarray, m: np.ndarray, cut: float, bandwidth: int, count: int

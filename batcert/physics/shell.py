@@ -212,11 +212,11 @@ def _modes_below(system: HarmonicSystem, n_nodes: int, cut: float
     from batcert.physics.band_modes import count_below, lowest_modes
 
     k, m = system.stiffness, system.mass
-    count = count_below((k - cut * m)[None], system.free, system.node_dofs, n_nodes)
+    count = count_below(k - cut * m, system.free, system.node_dofs, n_nodes)
     if count is not None:
-        if int(count[0]) == 0:
+        if count == 0:
             return np.zeros(0), np.zeros((k.shape[0], 0))
-        found = lowest_modes(k, m, cut, 2 * system.node_dofs - 1, int(count[0]))
+        found = lowest_modes(k, m, cut, 2 * system.node_dofs - 1, count)
         if found is not None:
             return found
     return dense_modes_below(system, cut)

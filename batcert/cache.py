@@ -1,31 +1,148 @@
 """batcert's cache directory: results that are costly to rebuild and cheap to keep, reused by
 later runs. Everything in it is an optimisation: a directory that cannot be made, read or
-written is passed over in silence, a damaged entry is recomputed, and deleting the directory is
-always safe.
+written is passed over, a damaged entry is recomputed and replaced, and deleting the directory
+is always safe.
 
 Where: ``$BATCERT_CACHE_DIR``, else ``$XDG_CACHE_HOME/batcert`` or ``~/.cache/batcert``, one
 folder per kind (``templates``: compiled report templates; ``barrels``: hollow bats' barrel
 shells, :mod:`batcert.physics.barrel`; ``modes``: bats' beam modes; ``ball-fits``: viscoelastic
 balls fitted to their tests; ``ball-walls``: balls' rigid-wall tables,
 :mod:`batcert.physics.balls`; ``compressions``: barrels' compression stiffness).
+
+What the cache may touch. The top folder is batcert's own only when it holds batcert's
+``CACHEDIR.TAG`` (the cache-directory tag that backup tools honour), written when batcert makes
+the folder, or adopts one that is empty or holds nothing but batcert's entries. A folder that
+holds anything else (``BATCERT_CACHE_DIR`` set to a project folder), or a kind's folder that is a
+symbolic link, is not used at all: caching is off for it, with one :class:`CacheWarning`. Within
+its folders the cache reads and deletes only files with its own names (``<32 hex>.arrays`` and its
+own temporary files), never following a link.
+
+What it trusts. Every entry carries a SHA-256 checksum of its header and arrays; a mismatch (a
+bad disk block, an edited file) is a miss, said once (:class:`CacheWarning`), recomputed and
+replaced, never a result.
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
+import re
+import stat
 import tempfile
+import warnings
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 
-def cache_dir(kind: str) -> Path | None:
-    """The folder of one kind of cache entry (made if missing), or None where that cannot be."""
-    root = os.environ.get("BATCERT_CACHE_DIR") or os.path.join(
+class CacheWarning(UserWarning):
+    """Something about the cache directory that a user should know and that changes no result:
+    a damaged entry (recomputed and replaced), a folder the cache will not use."""
+
+
+_SAID: set[str] = set()  # each notice once per process
+
+
+def notice(message: str) -> None:
+    """One :class:`CacheWarning`, once per process (the command line prints it as one
+    ``warning:`` line; a library user sees a Python warning)."""
+    if message not in _SAID:
+        _SAID.add(message)
+        warnings.warn(message, CacheWarning, stacklevel=3)
+
+
+@contextlib.contextmanager
+def warnings_as_lines(say: Callable[[str], None]) -> Iterator[None]:
+    """Inside the block every :class:`CacheWarning` is ``say(message)`` (one line: the
+    command line's ``warning:``), not Python's warning format with its source line."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("always", CacheWarning)
+        shown = warnings.showwarning
+
+        def show(message, category, filename, lineno, file=None, line=None):
+            if issubclass(category, CacheWarning):
+                say(str(message))
+            else:
+                shown(message, category, filename, lineno, file, line)
+
+        warnings.showwarning = show
+        yield
+
+
+TAG_NAME = "CACHEDIR.TAG"
+TAG = "Signature: 8a477f597d28d172789f06886806bc55\n# a cache directory tag, written by batcert\n"
+# the names of the files batcert writes in a kind's folder: array entries, their temporary
+# files while written, and Jinja's compiled templates (the ``templates`` folder)
+ENTRY_NAME = re.compile(r"[0-9a-f]{32}\.arrays")
+TEMP_NAME = re.compile(r"\.batcert-[A-Za-z0-9_]+\.tmp")
+OWN_NAMES = (ENTRY_NAME, TEMP_NAME, re.compile(r"__jinja2_[0-9a-f]+\.cache"))
+STALE_TEMP = 24 * 3600.0  # [s] a temporary file older than this was left by a killed writer
+
+
+def cache_root() -> Path:
+    """The cache directory's top folder (not made, not checked)."""
+    return Path(os.environ.get("BATCERT_CACHE_DIR") or os.path.join(
         os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
-        "batcert")
-    path = Path(root) / kind
+        "batcert"))
+
+
+def _own(name: str) -> bool:
+    return any(p.fullmatch(name) for p in OWN_NAMES)
+
+def _only_ours(root: Path) -> bool:
+    """Whether ``root`` holds nothing but folders of batcert's own entries (no link followed)."""
     try:
-        path.mkdir(parents=True, exist_ok=True, mode=0o700)
+        with os.scandir(root) as children:
+            for child in children:
+                if child.name == TAG_NAME:
+                    continue
+                if child.is_symlink() or not child.is_dir(follow_symlinks=False):
+                    return False
+                with os.scandir(child.path) as entries:
+                    if any(e.is_symlink() or not _own(e.name) for e in entries):
+                        return False
     except OSError:
+        return False
+    return True
+
+
+def _claim(root: Path) -> bool:
+    """Make ``root`` batcert's (create it and its tag), or say why it is not; True when the
+    cache may use it."""
+    tag = root / TAG_NAME
+    try:
+        if str(root) in _CLAIMED and tag.is_file():
+            return True
+        if tag.is_file() and "batcert" in tag.read_text(errors="replace"):
+            _CLAIMED.add(str(root))
+            return True
+        root.mkdir(parents=True, exist_ok=True, mode=0o700)
+        if not _only_ours(root):
+            notice(f"cache directory {root} holds files batcert did not write: caching is off "
+                   "(point BATCERT_CACHE_DIR at a new or empty folder)")
+            return False
+        tag.write_text(TAG)
+    except OSError:
+        return False
+    _CLAIMED.add(str(root))
+    return True
+
+
+_CLAIMED: set[str] = set()  # top folders found or made batcert's in this process
+
+def cache_dir(kind: str) -> Path | None:
+    """The folder of one kind of cache entry (made if missing), or None where that cannot be or
+    must not be (a top folder that is not batcert's, a kind's folder that is a link)."""
+    root = cache_root()
+    if not _claim(root):
+        return None
+    path = root / kind
+    try:
+        path.mkdir(exist_ok=True, mode=0o700)
+        st = os.lstat(path)
+    except OSError:
+        return None
+    if stat.S_ISLNK(st.st_mode) or not stat.S_ISDIR(st.st_mode):
+        notice(f"cache folder {path} is a link or not a folder: caching of {kind} is off")
         return None
     return path if os.access(path, os.W_OK | os.X_OK) else None
 
@@ -84,7 +201,7 @@ class Fingerprint:
         return self._value
 
 
-_MAGIC = b"batcert arrays 1\n"
+_MAGIC = b"batcert arrays 2 "  # then the SHA-256 of the rest, in hex, and a newline
 _ALIGN = 64  # each array's bytes start on a multiple of this
 
 
@@ -125,23 +242,40 @@ class ArrayStore:
             return None
         import hashlib
 
-        name = hashlib.sha256(f"{key}|{fingerprint}".encode()).hexdigest()[:32]
+        # the entry format is part of the name: an older format's entries are never read
+        name = hashlib.sha256(f"{key}|{fingerprint}|{_MAGIC!r}".encode()).hexdigest()[:32]
         return where / f"{name}{self.SUFFIX}"
 
     def load(self, key: str) -> dict | None:
         path = self._path(key)
-        if path is None or not path.is_file():
+        if path is None:
             return None
         try:
-            with open(path, "rb") as f:
-                buf = bytearray(os.fstat(f.fileno()).st_size)
-                if f.readinto(buf) != len(buf):
+            fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0))
+        except OSError:  # missing, unreadable, or a link
+            return None
+        try:
+            with os.fdopen(fd, "rb") as f:
+                st = os.fstat(f.fileno())
+                if not stat.S_ISREG(st.st_mode):
                     return None
+                buf = bytearray(st.st_size)
+                if f.readinto(buf) != len(buf):
+                    raise ValueError("shorter than its size")
             arrays = _unpack(buf)
             os.utime(path)  # recently used
-        except Exception:  # noqa: BLE001 - a damaged entry of any kind is only a miss
+        except Exception as exc:  # noqa: BLE001 - a damaged entry of any kind is only a miss
+            damaged(path, exc)
             return None
         return arrays
+
+    def damaged(self, key: str, why: object) -> None:
+        """The entry of ``key`` read intact but its arrays do not make a result (the caller's
+        check): said once, and removed (the caller recomputes and replaces it)."""
+        path = self._path(key)
+        if path is not None:
+            damaged(path, why)
+            _remove(str(path))
 
     def save(self, key: str, arrays: dict) -> None:
         path = self._path(key)
@@ -153,7 +287,7 @@ class ArrayStore:
             return
         tmp = None
         try:
-            fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".", suffix=".tmp")
+            fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".batcert-", suffix=".tmp")
             with os.fdopen(fd, "wb") as f:
                 f.writelines(parts)
             os.replace(tmp, path)
@@ -163,34 +297,57 @@ class ArrayStore:
             pass
         finally:
             if tmp is not None:
-                try:
-                    os.unlink(tmp)
-                except OSError:
-                    pass
+                _remove(tmp)
 
     def _trim(self, where: Path) -> None:
-        entries = []
-        for p in where.iterdir():
-            if p.name.startswith("."):  # another writer's temporary file
-                continue
+        """Least recently used entries out until the folder's entries hold at most ``limit``
+        bytes; a writer's temporary file older than :data:`STALE_TEMP` out. Only batcert's own
+        names, only regular files (a link is never followed nor removed)."""
+        import time
+        entries, now = [], time.time()
+        try:
+            with os.scandir(where) as it:
+                listing = list(it)
+        except OSError:
+            return
+        for p in listing:
             try:
-                st = p.stat()
+                st = p.stat(follow_symlinks=False)
             except OSError:
                 continue
-            entries.append((st.st_mtime, st.st_size, p))
+            if not stat.S_ISREG(st.st_mode):
+                continue
+            if ENTRY_NAME.fullmatch(p.name):
+                entries.append((st.st_mtime, st.st_size, p.path))
+            elif TEMP_NAME.fullmatch(p.name) and now - st.st_mtime > STALE_TEMP:
+                _remove(p.path)
         total = sum(size for _, size, _ in entries)
         for _, size, p in sorted(entries):
             if total <= self.limit:
                 break
-            try:
-                p.unlink()
+            if _remove(p):
                 total -= size
-            except OSError:
-                pass
+
+
+def _remove(path: str) -> bool:
+    with contextlib.suppress(OSError):
+        os.unlink(path)
+        return True
+    return False
+
+
+def damaged(path: Path | str, why: object) -> None:
+    """Say that a cache entry is damaged and is not used (it is recomputed and replaced)."""
+    notice(f"cache entry {path} is damaged ({why}); recomputed and replaced")
 
 
 def _pack(arrays: dict) -> list[bytes]:
-    """An entry's bytes (:class:`ArrayStore`), in pieces; ValueError for object arrays."""
+    """An entry's bytes (:class:`ArrayStore`), in pieces; ValueError for object arrays.
+
+    A first line names the format and carries the SHA-256 of everything after it; then a line of
+    JSON listing each array's name, dtype, shape and offset; then each array's bytes, starting on
+    a multiple of :data:`_ALIGN` from the start of the file."""
+    import hashlib
     import json
 
     import numpy as np
@@ -205,29 +362,39 @@ def _pack(arrays: dict) -> list[bytes]:
         offset += a.nbytes + -a.nbytes % _ALIGN
     header = json.dumps([{"name": n, "dtype": a.dtype.str, "shape": a.shape, "offset": o}
                          for n, a, o in items]).encode() + b"\n"
-    pad = -(len(_MAGIC) + len(header)) % _ALIGN
-    parts = [_MAGIC, header, b" " * pad]
+    first = len(_MAGIC) + 64 + 1
+    pad = -(first + len(header)) % _ALIGN
+    body = [header, b" " * pad]
     for _, a, _ in items:
-        parts += [a.tobytes(), bytes(-a.nbytes % _ALIGN)]
-    return parts
+        body += [a.tobytes(), bytes(-a.nbytes % _ALIGN)]
+    h = hashlib.sha256()
+    for piece in body:
+        h.update(piece)
+    return [_MAGIC, h.hexdigest().encode(), b"\n", *body]
 
 
 def _unpack(buf: bytearray) -> dict:
-    """The arrays of an entry read whole into ``buf`` (views into it, writable)."""
+    """The arrays of an entry read whole into ``buf`` (views into it, writable); ValueError
+    for anything but an intact entry of this format (its checksum checked first)."""
+    import hashlib
     import json
 
     import numpy as np
 
-    if not buf.startswith(_MAGIC):
-        raise ValueError("not an array entry")
-    end = buf.index(b"\n", len(_MAGIC)) + 1
+    first = len(_MAGIC) + 64 + 1
+    if not buf.startswith(_MAGIC) or len(buf) < first or buf[first - 1:first] != b"\n":
+        raise ValueError("not a batcert array entry of this format")
+    want = bytes(buf[len(_MAGIC):first - 1]).decode("ascii", "replace")
+    if hashlib.sha256(memoryview(buf)[first:]).hexdigest() != want:
+        raise ValueError("checksum mismatch")
+    end = buf.index(b"\n", first) + 1
     start = end + (-end % _ALIGN)
     arrays = {}
-    for item in json.loads(bytes(buf[len(_MAGIC):end])):
+    for item in json.loads(bytes(buf[first:end])):
         dtype, shape = np.dtype(item["dtype"]), tuple(item["shape"])
         count = int(np.prod(shape, dtype=np.int64))
         at = start + int(item["offset"])
         if dtype.hasobject or at + count * dtype.itemsize > len(buf):
-            raise ValueError("damaged entry")
+            raise ValueError("arrays beyond the end of the entry")
         arrays[item["name"]] = np.frombuffer(buf, dtype, count, at).reshape(shape)
     return arrays

@@ -48,6 +48,9 @@ class Store(Protocol):
 
     def save(self, key: str, arrays: dict[str, Any]) -> None: ...
 
+    def damaged(self, key: str, why: object) -> None:
+        """The entry of ``key`` loaded but does not make a result: say so, drop it."""
+
 
 class Kind(NamedTuple):
     """One kind of kept result: how many the process keeps, whether (and in which folder of
@@ -200,7 +203,12 @@ class Workspace:
             memo.move_to_end(key)
             return memo[key]
         store = self._stores.get(kind) if save is not None and load is not None else None
-        value = load(store.load(key)) if store is not None and load is not None else None
+        value = None
+        if store is not None and load is not None:
+            arrays = store.load(key)
+            value = _loaded(load, arrays)
+            if arrays is not None and value is None:
+                store.damaged(key, "its arrays do not make a result")
         if value is None:
             value = fn(*args)
             if store is not None and value is not None and save is not None:
@@ -209,6 +217,17 @@ class Workspace:
         while len(memo) > KINDS[kind].size:
             memo.popitem(last=False)
         return value
+
+
+def _loaded(load: Callable[[dict[str, Any] | None], T | None], arrays: dict[str, Any] | None) -> T | None:
+    """``load(arrays)``, None where the arrays do not make a result (a missing array, a wrong
+    shape: any error of ``load`` on them is a miss, never a traceback)."""
+    if arrays is None:
+        return None
+    try:
+        return load(arrays)
+    except Exception:  # noqa: BLE001 - a stored entry that does not load is only a miss
+        return None
 
 
 _CURRENT: contextvars.ContextVar[Workspace] = contextvars.ContextVar("batcert_workspace")

@@ -12,11 +12,15 @@ from batcert import workspace
 
 class DictStore:
     def __init__(self):
-        self.entries, self.loads, self.saves = {}, 0, 0
+        self.entries, self.loads, self.saves, self.bad = {}, 0, 0, []
 
     def load(self, key):
         self.loads += 1
         return self.entries.get(key)
+
+    def damaged(self, key, why):
+        self.bad.append(key)
+        self.entries.pop(key, None)
 
     def save(self, key, arrays):
         self.saves += 1

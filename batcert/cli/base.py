@@ -50,13 +50,14 @@ def _guard(func):
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
+        from batcert.cache import warnings_as_lines
         from batcert.engines import EngineUnavailable
         from batcert.errors import SchedulerUnavailable, UsageProblem
         from batcert.reports.write import OutputError
         from batcert.specs.resolve import NotFound
         _use_cache()
         try:
-            with _sigterm_as_interrupt():
+            with _sigterm_as_interrupt(), warnings_as_lines(lambda m: console.warnings([m])):
                 return func(*args, **kwargs)
         except InputError as exc:
             console.input_error(exc.render())

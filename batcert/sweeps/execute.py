@@ -19,6 +19,7 @@ import hashlib
 import json
 import os
 import re
+import sys
 import time
 from collections.abc import Callable
 from concurrent.futures import Future, ProcessPoolExecutor, as_completed
@@ -155,7 +156,9 @@ def evaluate_in_worker(chunk: Chunk, cache: bool = False) -> list[Row]:
     process that planned the sweep does (a worker starts without it)."""
     if cache:
         _attach_cache()
-    return evaluate_chunk(chunk)
+    from batcert.cache import warnings_as_lines
+    with warnings_as_lines(lambda m: print(f"  warning: {m}", file=sys.stderr)):
+        return evaluate_chunk(chunk)
 
 
 def _attach_cache() -> None:

@@ -83,7 +83,13 @@ def compression_stiffness(bat: BatModel, position: float, platen_width: float) -
     return workspace.current().call(
         "barrel-compression", _compression_stiffness, wall_of(bat), float(position),
         float(platen_width), save=lambda k: {"stiffness": np.array(k)},
-        load=lambda a: None if a is None else float(a["stiffness"]))
+        load=_stored_stiffness)
+
+
+def _stored_stiffness(arrays: dict) -> float | None:
+    """A kept compression stiffness, None unless it is one finite positive number."""
+    k = float(np.asarray(arrays["stiffness"]).reshape(()))
+    return k if np.isfinite(k) and k > 0 else None
 
 
 def _compression_stiffness(bat: BatModel, position: float, platen_width: float) -> float:

@@ -135,8 +135,9 @@ def test_convergence_under_refinement(r161, support):
 
 def test_numpy_eigensolver_agrees_with_lapack_generalised(r161):
     # The run path solves K x = lam M x with numpy only (Cholesky of M, then eigh); scipy's
-    # generalised LAPACK solver (sygvd) on the same matrices is the check: 1e-9 on frequencies
-    # (rounding of a 500-DOF dense problem), shapes to 1e-7 after the same sign convention.
+    # generalised LAPACK solver (sygvd) on the same matrices is the check: 1e-8 on frequencies
+    # (rounding of a 500-DOF dense problem: the lowest mode's differs by 1.6e-9 on an AMD EPYC's
+    # OpenBLAS kernels, under 1e-9 on others), shapes to 1e-7 after the same sign convention.
     import scipy.linalg
 
     from batcert.physics.beam import assemble, free_dofs, mesh_nodes
@@ -146,7 +147,7 @@ def test_numpy_eigensolver_agrees_with_lapack_generalised(r161):
     k, m = fe.stiffness[np.ix_(keep, keep)], fe.mass[np.ix_(keep, keep)]
     lam, vec = modes_module.eigenpairs(k, m, 2, 10)
     ref_lam, ref_vec = scipy.linalg.eigh(k, m, subset_by_index=[2, 11])
-    np.testing.assert_allclose(np.sqrt(lam), np.sqrt(ref_lam), rtol=1e-9)
+    np.testing.assert_allclose(np.sqrt(lam), np.sqrt(ref_lam), rtol=1e-8)
     sign = np.sign(vec[-2] * ref_vec[-2])
     np.testing.assert_allclose(vec * sign, ref_vec, atol=1e-7 * np.abs(ref_vec).max())
 

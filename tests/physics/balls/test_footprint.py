@@ -180,8 +180,9 @@ def test_axial_weights_are_gauss_jacobi(points):
     assert np.all(w > 0) and np.all(np.abs(xi) < 1)
     np.testing.assert_allclose(xi, -xi[::-1], atol=1e-14)  # symmetric
     # the weights come from a Vandermonde solve, whose rounding grows with the points:
-    # symmetric to 1.6e-12 (relative) at 15 points, 1.2e-12 at 12
-    np.testing.assert_allclose(w, w[::-1], rtol=1e-11)
+    # symmetric to 1.6e-12 (relative) at 15 points, 1.2e-12 at 12; 1.7e-11 at 15 on an AMD
+    # EPYC's OpenBLAS kernels (the solve's rounding depends on the BLAS kernel)
+    np.testing.assert_allclose(w, w[::-1], rtol=1e-10)
     # exact for xi^j, j < 2 points, against the normalised weight (1 - xi^2) / (4/3): the
     # moments 2/(j+1) - 2/(j+3) over 4/3 for even j, 0 for odd (measured <= 3e-15)
     for j in range(2 * points):

@@ -12,9 +12,10 @@ the fit and ``inspect`` use):
 * ``describe()``: its parameters for reports.
 
 Laws (:data:`LAWS`): ``power-law-hysteresis`` (Nathan 2000: a rate-independent hysteresis loop;
-the law of the published validations) and ``viscoelastic`` (a nonlinear standard linear solid:
+the law of the published validations), ``viscoelastic`` (a nonlinear standard linear solid:
 the loss follows the rate of the squeeze, as in the finite-element ball of the 2001 study; its
-parameters are fitted to ball tests, :mod:`batcert.physics.balls.fit`).
+parameters are fitted to ball tests, :mod:`batcert.physics.balls.fit`) and ``viscoelastic-2``
+(the same with two relaxation times, whose COR can keep falling with speed).
 """
 
 from __future__ import annotations
@@ -23,9 +24,10 @@ from dataclasses import dataclass
 
 from batcert.physics.balls.hysteresis import PowerLawHysteresis
 from batcert.physics.balls.law import ContactLaw
-from batcert.physics.balls.viscoelastic import Viscoelastic
+from batcert.physics.balls.viscoelastic import TwoTimeViscoelastic, Viscoelastic
 
-__all__ = ["LAWS", "ContactLaw", "LawEntry", "PowerLawHysteresis", "Viscoelastic"]
+__all__ = ["LAWS", "ContactLaw", "LawEntry", "PowerLawHysteresis", "TwoTimeViscoelastic",
+           "Viscoelastic"]
 
 
 @dataclass(frozen=True)
@@ -56,4 +58,10 @@ LAWS: dict[str, LawEntry] = {
         "F = k0 u^a - k1 s, ds/dt = (u^a - s)/tau, F >= 0: the loss follows the rate of the "
         "squeeze; parameters fitted to the ball's tests (COR at several speeds, contact "
         "times, compression)"),
+    TwoTimeViscoelastic.name: LawEntry(
+        TwoTimeViscoelastic.name, TwoTimeViscoelastic,
+        "viscoelastic, two relaxation times (generalised Maxwell)",
+        "F = k0 u^a - k_s s_s - k_f s_f, ds_j/dt = (u^a - s_j)/tau_j, F >= 0: a slow branch "
+        "holds the loss of slow impacts, a fast one a loss that grows as the contact shortens, "
+        "so the COR can fall with speed over the whole range; fitted to the ball's tests"),
 }

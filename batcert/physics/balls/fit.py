@@ -37,17 +37,22 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from batcert.physics.balls import footprint
+from batcert.physics.balls.fit_coordinates import SLOPE, bounds, law_of, theta_of
 from batcert.physics.balls.impact1d import body_impact, contact_time_estimate
-from batcert.physics.balls.viscoelastic import Viscoelastic, ViscoelasticMarch
+from batcert.physics.balls.viscoelastic import TwoTimeViscoelastic, Viscoelastic, ViscoelasticMarch
 
 KINDS = ("cor", "cylinder_cor", "peak_force", "collision_time", "contact_time", "compression")
+COR_KINDS = ("cor", "cylinder_cor")  # what a livelier or deader lot moves
 STIFFNESS_KINDS = ("peak_force", "collision_time", "contact_time", "compression")
 MAX_RESIDUAL = 3.0  # a test missed by more than this many standard uncertainties refuses the fit
 FIT_STEPS = 150  # integration steps per contact time while fitting (COR to about 3e-6)
 # plausible ranges: a fit at their edge is refused (the data do not hold the parameter)
 BOUNDS = {"exponent": (1.0, 3.0), "relaxed_fraction": (0.01, 0.99),
-          "relaxation_time": (1e-6, 0.1), "stiffness": (1e3, 1e13)}
-PARAMETERS = ("stiffness", "exponent", "relaxed_fraction", "relaxation_time")
+          "relaxation_time": (1e-6, 0.1), "stiffness": (1e3, 1e13),
+          "fast_share": (0.01, 0.99), "fast_relaxation_time": (1e-6, 0.1)}
+PARAMETERS = Viscoelastic.PARAMETERS  # the one-time law's (the default law of a fit)
+# the laws a ball's tests can be fitted to (each lists its PARAMETERS and their COORDINATES)
+FITTED = {Viscoelastic.name: Viscoelastic, TwoTimeViscoelastic.name: TwoTimeViscoelastic}
 
 
 class FitError(ValueError):
@@ -102,18 +107,7 @@ class BallFit:
         above the tested balls' (:mod:`batcert.uncertainty`), by the fit's linearisation."""
         if k == 0.0:
             return self.law
-        return _law(_theta(self.law) + k * np.asarray(self.lot_direction))
-
-
-def _theta(law: Viscoelastic) -> np.ndarray:
-    r = law.relaxed_fraction
-    return np.array([np.log(law.stiffness), law.exponent, np.log(r / (1 - r)),
-                     np.log(law.relaxation_time)])
-
-
-def _law(theta) -> Viscoelastic:
-    return Viscoelastic(float(np.exp(theta[0])), float(theta[1]),
-                        float(1.0 / (1.0 + np.exp(-theta[2]))), float(np.exp(theta[3])))
+        return law_of(theta_of(self.law) + k * np.asarray(self.lot_direction), type(self.law))
 
 
 def predict(laws: list[Viscoelastic], tests: tuple[BallTest, ...], mass: float, radius: float,
@@ -165,11 +159,13 @@ def test_values(law, tests: tuple[BallTest, ...], mass: float, radius: float) ->
     return out
 
 
-def _start(tests: tuple[BallTest, ...], mass: float) -> list[np.ndarray]:
+def _start(tests: tuple[BallTest, ...], mass: float,
+           cls: type[Viscoelastic] = Viscoelastic) -> list[np.ndarray]:
     """Starting points read off the data: the exponent from how the times fall with speed
     (an elastic power-law spring's contact time goes as ``v^(-(a-1)/(a+1))``), the stiffness
     from a time, a force or the compression, a few relaxation times around a fifth of a
-    contact time."""
+    contact time; for two relaxation times, the slow one near the contact time of slow
+    impacts and the fast one a tenth to a third of a fast impact's."""
     times = sorted((t.condition, t.value) for t in tests
                    if t.kind in ("collision_time", "contact_time"))
     a = 1.8
@@ -195,22 +191,33 @@ def _start(tests: tuple[BallTest, ...], mass: float) -> list[np.ndarray]:
             um = ((1 + a) * mass * v**2 / 2.0 / f) ** 1.0  # F u_m ~ (1+a) E for a power law
             k = f / um**a
     starts = []
+    if cls is TwoTimeViscoelastic:
+        slow = max(t for _, t in times) if times else t_scale
+        fast = min(t for _, t in times) if times else t_scale
+        for fast_frac in (0.02, 0.15):
+            for share in (0.9, 0.5):
+                for r in (0.1, 0.3):
+                    law = TwoTimeViscoelastic(k * (2.0 if r == 0.3 else 3.0), a, r, 0.5 * slow,
+                                              share, fast_frac * fast)
+                    starts.append(theta_of(law))
+        return starts
     for tau_frac in (0.2, 0.05, 0.6):
         for r in (0.4, 0.15):
             law = Viscoelastic(k * (1.6 if r == 0.4 else 2.5), a, r, tau_frac * t_scale)
-            starts.append(_theta(law))
+            starts.append(theta_of(law))
     return starts
 
 
-def _solve(tests: tuple[BallTest, ...], mass: float, radius: float, fixed: Fixed = ()):
-    """The least-squares solution (module notes) over the parameters not in ``fixed``:
-    ``(theta, residuals, jacobian)``, ``theta`` all four coordinates, the Jacobian over the free
-    ones; FitError when no start converges."""
+def _solve(tests: tuple[BallTest, ...], mass: float, radius: float, fixed: Fixed = (),
+           cls: type[Viscoelastic] = Viscoelastic):
+    """The least-squares solution (module notes) over the parameters of ``cls`` not in
+    ``fixed``: ``(theta, residuals, jacobian)``, ``theta`` all the coordinates, the Jacobian over
+    the free ones; FitError when no start converges."""
     from scipy.optimize import least_squares  # lazy: only a fit needs it
 
     value = np.array([t.value for t in tests])
     sigma = np.array([t.uncertainty for t in tests])
-    base, free = _split(fixed)
+    base, free = _split(fixed, cls)
 
     def full(x) -> np.ndarray:
         theta = base.copy()
@@ -218,7 +225,7 @@ def _solve(tests: tuple[BallTest, ...], mass: float, radius: float, fixed: Fixed
         return theta
 
     def residuals_of(xs) -> np.ndarray:
-        laws = [_law(full(x)) for x in xs]
+        laws = [law_of(full(x), cls) for x in xs]
         return (predict(laws, tests, mass, radius) - value) / sigma
 
     def fun(x):
@@ -229,14 +236,9 @@ def _solve(tests: tuple[BallTest, ...], mass: float, radius: float, fixed: Fixed
         r = residuals_of([x] + [x + d for d in steps])
         return ((r[1:] - r[0]) / 1e-3).T
 
-    lower = np.array([np.log(BOUNDS["stiffness"][0]), BOUNDS["exponent"][0],
-                      _logit(BOUNDS["relaxed_fraction"][0]),
-                      np.log(BOUNDS["relaxation_time"][0])])[free]
-    upper = np.array([np.log(BOUNDS["stiffness"][1]), BOUNDS["exponent"][1],
-                      _logit(BOUNDS["relaxed_fraction"][1]),
-                      np.log(BOUNDS["relaxation_time"][1])])[free]
-    best = None
-    for start in _start(tests, mass):
+    lower, upper = (b[free] for b in bounds(cls, BOUNDS))
+    best, costs = None, []
+    for start in _start(tests, mass, cls):
         start = np.clip(start[free], lower + 1e-6, upper - 1e-6)
         try:
             res = least_squares(fun, start, jac=jac, bounds=(lower, upper), x_scale="jac",
@@ -247,8 +249,12 @@ def _solve(tests: tuple[BallTest, ...], mass: float, radius: float, fixed: Fixed
             best = res
         if best.cost <= 0.5 * max(len(tests) - free.size, 1):  # chi2/dof <= 1: good
             break
+        # two starts that end at the best cost to 0.1 % found the same minimum: done
+        if sum(abs(c - best.cost) <= 1e-3 * best.cost for c in costs + [res.cost]) >= 2:
+            break
+        costs.append(res.cost)
     if best is None:
-        raise FitError("the fit of the viscoelastic ball to its tests did not converge")
+        raise FitError(f"the fit of the {cls.name} ball to its tests did not converge")
     return full(best.x), fun(best.x), jac(best.x)
 
 
@@ -256,34 +262,38 @@ def _solve(tests: tuple[BallTest, ...], mass: float, radius: float, fixed: Fixed
 Fixed = tuple[tuple[str, float], ...]
 
 
-def _split(fixed: Fixed) -> tuple[np.ndarray, np.ndarray]:
-    """The fit's coordinates with the fixed parameters set (the others zero), and the indices
-    of the free ones."""
+def _split(fixed: Fixed, cls: type[Viscoelastic] = Viscoelastic) -> tuple[np.ndarray, np.ndarray]:
+    """The fit's coordinates with the fixed parameters set (the others placeholders), and the
+    indices of the free ones."""
     given = dict(fixed)
-    unknown = set(given) - set(PARAMETERS)
+    unknown = set(given) - set(cls.PARAMETERS)
     if unknown:
-        raise ValueError(f"not parameters of the viscoelastic law: {sorted(unknown)}")
-    filled = {"stiffness": 1.0, "exponent": 1.5, "relaxed_fraction": 0.5,
-              "relaxation_time": 1.0, **given}
-    base = _theta(Viscoelastic(*(filled[p] for p in PARAMETERS)))
-    return base, np.array([i for i, p in enumerate(PARAMETERS) if p not in given], dtype=int)
+        raise ValueError(f"not parameters of the {cls.name} law: {sorted(unknown)}")
+    # placeholders for the free ones: the middle of each plausible range (valid for the law)
+    filled = {**{p: float(np.sqrt(BOUNDS[p][0] * BOUNDS[p][1])) if c == "log"
+                 else 0.5 * (BOUNDS[p][0] + BOUNDS[p][1])
+                 for p, c in zip(cls.PARAMETERS, cls.COORDINATES, strict=True)}, **given}
+    base = theta_of(cls(*(filled[p] for p in cls.PARAMETERS)))
+    return base, np.array([i for i, p in enumerate(cls.PARAMETERS) if p not in given], dtype=int)
 
 
 def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: float,
-             fixed: Fixed = ()) -> BallFit:
-    """Fit the viscoelastic law to ``tests`` of a ball of ``mass`` [kg] and ``radius`` [m]
-    (module notes), the parameters in ``fixed`` held at their given values (a ball known only
-    by its marks: module notes); :class:`FitError` when the result cannot be trusted."""
+             fixed: Fixed = (), law: str = Viscoelastic.name) -> BallFit:
+    """Fit the viscoelastic law ``law`` (a name in :data:`FITTED`) to ``tests`` of a ball of
+    ``mass`` [kg] and ``radius`` [m] (module notes), the parameters in ``fixed`` held at their
+    given values (a ball known only by its marks: module notes); :class:`FitError` when the
+    result cannot be trusted."""
+    cls = FITTED[law]
     tests = tuple(tests)
     kinds = {t.kind for t in tests}
-    n_free = len(PARAMETERS) - len(fixed)
+    n_free = len(cls.PARAMETERS) - len(fixed)
     if len(tests) < n_free:
         held = f" ({len(fixed)} held)" if fixed else ""
-        raise FitError(f"the viscoelastic ball has {n_free} parameters to fit{held} and the "
+        raise FitError(f"the {cls.name} ball has {n_free} parameters to fit{held} and the "
                        f"file gives {len(tests)} ball tests: give at least {n_free} (COR at "
                        "several speeds and a contact time, peak force or compression), or "
                        "hold more of the law's parameters")
-    if not kinds & {"cor", "cylinder_cor"} or not kinds & set(STIFFNESS_KINDS):
+    if not kinds & set(COR_KINDS) or not kinds & set(STIFFNESS_KINDS):
         raise FitError("the viscoelastic ball needs the COR at two or more speeds and at least "
                        "one test that measures its stiffness (collision_time, contact_time, "
                        "peak_force or compression)")
@@ -293,8 +303,8 @@ def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: 
         raise FitError("every ball test of a fit needs its standard uncertainty",
                        int(np.argmin(sigma > 0)))
 
-    theta, r, jm = _solve(tests, mass, radius, fixed)
-    law = replace(_law(theta), **dict(fixed))  # the held values exactly, not through exp(log)
+    theta, r, jm = _solve(tests, mass, radius, fixed, cls)
+    fitted = replace(law_of(theta, cls), **dict(fixed))  # the held values exactly
     dof = len(tests) - n_free
     chi2 = float(r @ r)
     jtj = jm.T @ jm
@@ -303,37 +313,35 @@ def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: 
                        "(the fit is singular): add a test of another kind or speed (COR at a "
                        "third speed, a contact or collision time, a peak force, a compression)")
     cov = np.linalg.inv(jtj) * max(1.0, chi2 / dof if dof > 0 else 1.0)
-    at_edge = _at_bounds(law)
+    at_edge = _at_bounds(fitted)
     if at_edge:
         raise FitError(f"the fit puts the viscoelastic ball's {at_edge} at the edge of its "
                        "plausible range: the tests do not hold it (or are not of one ball)")
     if np.max(np.abs(r)) > MAX_RESIDUAL:
-        worst, miss, model_value = _blame(tests, mass, radius, r, fixed)
+        worst, miss, model_value = _blame(tests, mass, radius, r, fixed, cls)
         raise FitError(f"the viscoelastic law fitted to the other tests misses this one by "
                        f"{miss:+.1f} standard uncertainties (model "
                        f"{_show(tests[worst], model_value)} against "
                        f"{_show(tests[worst], value[worst])}): the tests are not of one ball, or "
                        "an uncertainty is too small", worst)
     # parameter uncertainties, in SI (through the transforms)
-    _, free = _split(fixed)
-    su = np.zeros(len(PARAMETERS))
+    _, free = _split(fixed, cls)
+    su = np.zeros(len(cls.PARAMETERS))
     su[free] = np.sqrt(np.diag(cov))  # a held parameter: no uncertainty from the fit
-    rf = law.relaxed_fraction
-    uncertainty = {"stiffness": law.stiffness * su[0], "exponent": su[1],
-                   "relaxed_fraction": rf * (1 - rf) * su[2],
-                   "relaxation_time": law.relaxation_time * su[3]}
+    uncertainty = {p: float(SLOPE[c](getattr(fitted, p)) * su[i])
+                   for i, (p, c) in enumerate(zip(cls.PARAMETERS, cls.COORDINATES, strict=True))}
     # a lot whose every COR test is one standard uncertainty higher: those residuals fall by 1
-    dr = np.array([-1.0 if t.kind in ("cor", "cylinder_cor") else 0.0 for t in tests])
-    step = np.zeros(len(PARAMETERS))
+    dr = np.array([-1.0 if t.kind in COR_KINDS else 0.0 for t in tests])
+    step = np.zeros(len(cls.PARAMETERS))
     step[free] = -np.linalg.solve(jtj, jm.T @ dr)
     direction = tuple(float(x) for x in step)
     model = value + r * sigma
-    return BallFit(law, tests, tuple(float(x) for x in model), tuple(float(x) for x in r), chi2,
-                   dof, uncertainty, direction, tuple(k for k, _ in fixed))
+    return BallFit(fitted, tests, tuple(float(x) for x in model), tuple(float(x) for x in r),
+                   chi2, dof, uncertainty, direction, tuple(k for k, _ in fixed))
 
 
 def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarray,
-           fixed: Fixed = ()) -> tuple[int, float, float]:
+           fixed: Fixed = (), cls: type[Viscoelastic] = Viscoelastic) -> tuple[int, float, float]:
     """The test at fault in a refused fit, ``(index, miss, model value)``: the one without
     which the others fit best (the smallest chi-square of the fit to the rest), its miss being
     how far that fit is from it, in its standard uncertainties. Where the rest fit equally well
@@ -348,18 +356,19 @@ def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarra
     for i, test in enumerate(tests):
         rest = tests[:i] + tests[i + 1:]
         kinds = {t.kind for t in rest}
-        if (len(rest) < len(PARAMETERS) - len(fixed) or not kinds & {"cor", "cylinder_cor"}
+        n = len(cls.PARAMETERS)
+        if (len(rest) < n - len(fixed) or not kinds & set(COR_KINDS)
                 or not kinds & set(STIFFNESS_KINDS)):
             continue
         try:
-            theta, r_rest, jm = _solve(rest, mass, radius, fixed)
-            cov = np.zeros((len(PARAMETERS), len(PARAMETERS)))
-            free = _split(fixed)[1]
+            theta, r_rest, jm = _solve(rest, mass, radius, fixed, cls)
+            cov = np.zeros((n, n))
+            free = _split(fixed, cls)[1]
             cov[np.ix_(free, free)] = np.linalg.inv(jm.T @ jm)
         except (FitError, np.linalg.LinAlgError):
             continue
-        steps = 1e-3 * np.eye(len(PARAMETERS))
-        values = [float(test_values(_law(th), (test,), mass, radius)[0])
+        steps = 1e-3 * np.eye(n)
+        values = [float(test_values(law_of(th, cls), (test,), mass, radius)[0])
                   for th in (theta, *(theta + d for d in steps))]
         gradient = (np.array(values[1:]) - values[0]) / 1e-3
         spread = np.sqrt(test.uncertainty**2 + max(float(gradient @ cov @ gradient), 0.0))
@@ -371,15 +380,11 @@ def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarra
     return best
 
 
-def _logit(p: float) -> float:
-    return float(np.log(p / (1 - p)))
-
-
 def _at_bounds(law: Viscoelastic) -> str | None:
-    for name in ("exponent", "relaxed_fraction", "relaxation_time", "stiffness"):
+    for name, coordinate in zip(law.PARAMETERS, law.COORDINATES, strict=True):
         lo, hi = BOUNDS[name]
         x = getattr(law, name)
-        if name in ("relaxation_time", "stiffness"):
+        if coordinate == "log":
             near = np.log(x / lo) < 1e-3 or np.log(hi / x) < 1e-3
         else:
             near = x - lo < 1e-4 * (hi - lo) or hi - x < 1e-4 * (hi - lo)

@@ -73,11 +73,21 @@ class Viscoelastic:
     relaxed_fraction: float
     relaxation_time: float
     name: ClassVar[str] = "viscoelastic"
+    # the parameters in order, and each one's coordinate in a fit (batcert.physics.balls.fit):
+    # "log" for a positive scale, "logit" for a fraction in (0, 1), "" for the number itself
+    PARAMETERS: ClassVar[tuple[str, ...]] = ("stiffness", "exponent", "relaxed_fraction",
+                                             "relaxation_time")
+    COORDINATES: ClassVar[tuple[str, ...]] = ("log", "", "logit", "log")
 
     def __post_init__(self) -> None:
         if not (self.stiffness > 0 and 1.0 <= self.exponent <= 3.0
                 and 0.0 < self.relaxed_fraction <= 1.0 and self.relaxation_time > 0):
             raise ValueError(f"viscoelastic ball parameters out of range: {self}")
+
+    def branches(self) -> tuple[tuple[float, ...], ...]:
+        """The Maxwell branches: ``(k_j / k0 [-], relaxation time tau_j [s])`` each, the
+        fractions adding up to ``1 - relaxed_fraction``."""
+        return ((1.0 - self.relaxed_fraction, self.relaxation_time),)
 
     @property
     def relaxed_stiffness(self) -> float:
@@ -204,9 +214,10 @@ class ViscoelasticMarch:
     crossing = True  # the force falls through zero with a finite slope (physics/march.py)
 
     def __init__(self, k0, k1, a, tau, h=None):
+        # k0, a: (n,); k1, tau, s: (n, branches)
         self.k0, self.k1, self.a, self.tau = k0, k1, a, tau
         n = k0.size
-        self.s = np.zeros(n)
+        self.s = np.zeros(k1.shape)
         self.work = np.zeros(n)
         self.u_last = np.zeros(n)
         self.f_last = np.zeros(n)
@@ -217,52 +228,69 @@ class ViscoelasticMarch:
     def of(cls, laws: list[Viscoelastic], masses, which, scale=1.0, rule: str = "compression",
            speed=None) -> ViscoelasticMarch:
         """Rows of several viscoelastic balls: row ``i`` is ``laws[which[i]]``, its stiffness
-        times ``scale[i]`` (``masses``, ``rule``, ``speed``: as for Nathan's law, unused)."""
+        times ``scale[i]`` (``masses``, ``rule``, ``speed``: as for Nathan's law, unused). Balls
+        with fewer Maxwell branches than the most get branches of zero stiffness (which add
+        exactly nothing)."""
         which = np.asarray(which, dtype=int)
-        pick = np.array([[law.stiffness, law.exponent, law.relaxed_fraction, law.relaxation_time]
-                         for law in laws])[which]
-        k0 = pick[:, 0] * np.broadcast_to(np.asarray(scale, dtype=float), which.shape)
-        return cls(k0, k0 * (1.0 - pick[:, 2]), pick[:, 1].copy(), pick[:, 3].copy())
+        n_branches = max(len(law.branches()) for law in laws)
+        k1 = np.zeros((len(laws), n_branches))
+        tau = np.ones((len(laws), n_branches))
+        for i, law in enumerate(laws):
+            for j, (k, t) in enumerate(law.branches()):
+                k1[i, j], tau[i, j] = k, t
+        factor = np.broadcast_to(np.asarray(scale, dtype=float), which.shape)
+        k0 = np.array([law.stiffness for law in laws])[which] * factor
+        a = np.array([law.exponent for law in laws])[which]
+        return cls(k0, k0[:, None] * k1[which], a, tau[which])
 
     def for_step(self, h) -> ViscoelasticMarch:
         """Fix the step ``h`` [s] (scalar, or one per row) and compute the stage constants."""
-        h = np.broadcast_to(np.asarray(h, dtype=float), self.tau.shape)
-        self._coef = _branch_step(self.tau, h)
+        h = np.broadcast_to(np.asarray(h, dtype=float), self.k0.shape)
+        self._coef = _branch_step(self.tau, h[:, None])
         self.h = h
         return self
+
+    def _pull(self, s):
+        """The branches' force ``sum_j k_j s_j`` [N], (n,)."""
+        return (self.k1 * s).sum(axis=1)
 
     def _x(self, u):
         return np.exp(self.a * np.log(np.maximum(u, _TINY))) * (u > 0)
 
+    def _g(self, x, s):
+        """The contact measure ``k0 u^a - sum_j k_j s_j`` (before clipping) [N], (n,)."""
+        return self.k0 * x - self._pull(s)
+
     def start(self, u, u_top=None):
         e2, _, q, *_ = self._coef  # type: ignore[misc]
         self._x0 = x0 = self._x(u)
-        self._sa = e2 * self.s + q * x0
-        return np.maximum(self.k0 * x0 - self.k1 * self.s, 0.0)
+        self._sa = e2 * self.s + q * x0[:, None]
+        return np.maximum(self._g(x0, self.s), 0.0)
 
     def half_a(self, u):
         e2, _, q, *_ = self._coef  # type: ignore[misc]
         self._xa = xa = self._x(u)
-        f = np.maximum(self.k0 * xa - self.k1 * self._sa, 0.0)
-        self._sb = e2 * self.s + q * xa
+        f = np.maximum(self._g(xa, self._sa), 0.0)
+        self._sb = e2 * self.s + q * xa[:, None]
         return f
 
     def half_b(self, u):
         e2, _, q, *_ = self._coef  # type: ignore[misc]
         self._xb = xb = self._x(u)
-        f = np.maximum(self.k0 * xb - self.k1 * self._sb, 0.0)
-        self._sc = e2 * self._sa + q * (2.0 * xb - self._x0)
+        f = np.maximum(self._g(xb, self._sb), 0.0)
+        self._sc = e2 * self._sa + q * (2.0 * xb - self._x0)[:, None]
         return f
 
     def end(self, u):
         self._xc = xc = self._x(u)
-        return np.maximum(self.k0 * xc - self.k1 * self._sc, 0.0)
+        return np.maximum(self._g(xc, self._sc), 0.0)
 
     def finish(self, u_new):
-        """Advance the branch over the step; the contact measure at its end [N], (n,)."""
+        """Advance the branches over the step; the contact measure at its end [N], (n,)."""
         _, e1, _, w1, w2, w3 = self._coef  # type: ignore[misc]
-        self.s = e1 * self.s + w1 * self._x0 + w2 * (self._xa + self._xb) + w3 * self._xc
-        g = self.k0 * self._x(u_new) - self.k1 * self.s
+        self.s = (e1 * self.s + w1 * self._x0[:, None] + w2 * (self._xa + self._xb)[:, None]
+                  + w3 * self._xc[:, None])
+        g = self._g(self._x(u_new), self.s)
         f = np.maximum(g, 0.0)
         self.work = self.work + 0.5 * (self.f_last + f) * (u_new - self.u_last)
         self.u_last, self.f_last = u_new, f
@@ -291,3 +319,53 @@ class ViscoelasticMarch:
                 value = tuple(c[keep] for c in value)
             setattr(out, name, value)
         return out
+
+
+@dataclass(frozen=True)
+class TwoTimeViscoelastic(Viscoelastic):
+    """The viscoelastic law with two relaxation times (a two-term Prony series, the
+    generalised Maxwell solid): ``F = k0 x - k_s s_s - k_f s_f``, ``ds_j/dt = (x - s_j) /
+    tau_j``, ``k_s + k_f = k0 - k_inf``.
+
+    One relaxation time puts the ball's loss at one time scale: its COR falls with speed only
+    while the contact time approaches ``tau`` and rises again beyond (measured on the one-time
+    law fitted to the collegiate ball: flat from 20 to 50 m/s, rising above). A slow branch
+    (``tau`` about the low-speed contact time) holds the loss of slow impacts, a fast one
+    (``tau_f`` below the contact time at bat speed) a loss that keeps growing as the contact
+    shortens: the COR can fall over the whole range, as ball tests say it does.
+
+    Attributes (besides :class:`Viscoelastic`'s; ``relaxation_time`` is the slow branch's)
+    ----------
+    fast_share : float
+        ``k_f / (k0 - k_inf)``: the fast branch's share of the relaxing stiffness [-].
+    fast_relaxation_time : float
+        ``tau_f`` of the fast branch [s].
+    """
+
+    fast_share: float
+    fast_relaxation_time: float
+    name: ClassVar[str] = "viscoelastic-2"
+    PARAMETERS: ClassVar[tuple[str, ...]] = Viscoelastic.PARAMETERS + (
+        "fast_share", "fast_relaxation_time")
+    COORDINATES: ClassVar[tuple[str, ...]] = Viscoelastic.COORDINATES + ("logit", "log")
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if not (0.0 < self.fast_share < 1.0 and self.fast_relaxation_time > 0):
+            raise ValueError(f"viscoelastic ball parameters out of range: {self}")
+
+    def branches(self) -> tuple[tuple[float, float], ...]:
+        loss = 1.0 - self.relaxed_fraction
+        return ((loss * (1.0 - self.fast_share), self.relaxation_time),
+                (loss * self.fast_share, self.fast_relaxation_time))
+
+    def summary(self) -> str:
+        return (f"viscoelastic, two relaxation times: k0 = {self.stiffness:.4g} N/m^a, "
+                f"a = {self.exponent:.4g}, k_inf / k0 = {self.relaxed_fraction:.3g}, "
+                f"tau = {self.relaxation_time * 1e6:.1f} us (share {1 - self.fast_share:.3g}), "
+                f"tau_f = {self.fast_relaxation_time * 1e6:.1f} us "
+                f"(share {self.fast_share:.3g})")
+
+    def describe(self) -> dict:
+        return {**super().describe(), "fast_share": self.fast_share,
+                "fast_relaxation_time": self.fast_relaxation_time}

@@ -147,10 +147,11 @@ def cache_dir(kind: str) -> Path | None:
     return path if os.access(path, os.W_OK | os.X_OK) else None
 
 
-# what a stored physics result depends on besides its inputs: every source file of the physics
-# and of the workspace that keys it, and the releases of numpy and scipy (not a hand-kept list
-# of modules per kind: a change anywhere in the physics retires every stored entry)
-PHYSICS_CODE = ("batcert.physics", "batcert.workspace", "numpy", "scipy")
+# what a stored result depends on besides its inputs: the sources of the physics, the workspace
+# and what computes a kept result above the physics (a ball lot's calibration runs a protocol),
+# and numpy's and scipy's releases (a change anywhere retires every entry)
+PHYSICS_CODE = ("batcert.physics", "batcert.workspace", "numpy", "scipy", "batcert.engines",
+                "batcert.runner", "batcert.model", "batcert.methods", "batcert.specs", "batcert.units")
 
 
 def code_fingerprint(modules) -> str | None:

@@ -81,6 +81,8 @@ KINDS: dict[str, Kind] = {
                       "a rigid wall, tabulated in speed"),
     "ball-fit": Kind(16, "ball-fits", "a viscoelastic ball's parameters fitted to its tests"),
     "footprint": Kind(256, None, "a ball's contact footprint at one compression"),
+    "ball-lot": Kind(8, "ball-lots", "a ball lot's calibration on its reference bat: a few "
+                     "protocol runs of the reference bat (batcert.runner.lot)"),
 }
 
 # batches of more than this many impacts are neither hashed nor kept: those recur (a barrel's

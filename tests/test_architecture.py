@@ -33,8 +33,9 @@ ALLOWED = {
     # impact rules) and from specs/kinds.py (claim checks, league rule kinds)
     "specs": {"units", "errors", "conventions", "physics", "methods"},
     "model": {"units", "errors", "conventions", "physics", "specs", "results"},
+    # (and the workspace: a ball lot's calibration on its reference bat is kept, runner/lot.py)
     "runner": {"units", "errors", "conventions", "physics", "methods", "engines", "specs",
-               "model", "results", "version"},
+               "model", "results", "version", "workspace"},
     "reports": {"units", "errors", "results", "methods", "cache"},
     "analysis": {"units", "specs", "model", "results", "reports", "version"},
     # (and the workspace and cache: a worker process keeps its results where its parent does)

@@ -53,8 +53,8 @@ def inspect(file, pivot, as_json):
         raise click.UsageError(f"{file} is a {kind} file; inspect takes a bat or a ball "
                                "(check it with `batcert validate`)")
     if kind == "ball":
-        from batcert.specs.ball import load_ball
-        info = inspecting.inspect_ball(load_ball(path))
+        from batcert.commands.inputs import load_ball_lot
+        info = inspecting.inspect_ball(load_ball_lot(path))
         console.print_results("inspect", [info]) if as_json else console.blocks(ball_view(info))
         return
     p = None

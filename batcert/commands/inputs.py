@@ -54,9 +54,16 @@ def protocol_ball_path(protocol: ProtocolSpec) -> Path:
         raise protocol.problem("ball", str(exc)) from None
 
 
+def load_ball_lot(path: str | Path) -> BallSpec:
+    """A ball file, its lot calibrated on its reference bat where it names one
+    (:mod:`batcert.runner.lot`)."""
+    from batcert.runner.lot import calibrated_lot
+    return calibrated_lot(load_ball(path))
+
+
 def protocol_inputs(protocol: ProtocolSpec) -> ProtocolInputs:
     """A loaded protocol with its ball."""
-    return ProtocolInputs(protocol, load_ball(protocol_ball_path(protocol)))
+    return ProtocolInputs(protocol, load_ball_lot(protocol_ball_path(protocol)))
 
 
 def load_protocol_any(value: str, relative_to: Path | None = None) -> ProtocolInputs:
@@ -110,7 +117,7 @@ def batter_inputs(path: str | Path) -> BatterInputs:
         ball = resolve("ball", spec.ball, relative_to=Path(spec.path))
     except NotFound as exc:
         raise spec.source.problem("ball", str(exc)) from None
-    return BatterInputs(spec, load_ball(ball))
+    return BatterInputs(spec, load_ball_lot(ball))
 
 
 def load_batter_any(value: str) -> BatterInputs:

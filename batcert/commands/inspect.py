@@ -70,16 +70,28 @@ def rounded(data, digits: int = SIGNIFICANT):
     return map_floats(data, lambda x: float(f"{x:.{digits}g}") if np.isfinite(x) else x)
 
 
-def inspect_ball(ball: BallSpec, speeds=(1.0, 11.0, 25.9, 26.8, 45.0, 58.0, 60.8, 67.0)) -> dict:
+# the cylinder inspect sets beside the flat wall: the largest barrel of the baseball rules
+# (2 5/8 in, NCAA/NFHS BBCOR), the surface of a BBCOR test
+CYLINDER_DIAMETER = 2.625 * 0.0254  # [m]
+
+
+def inspect_ball(ball: BallSpec, speeds=(1.0, 5.0, 11.0, 20.0, 25.9, 26.8, 30.0, 40.0, 45.0,
+                                         50.0, 58.0, 60.8, 67.0, 70.0)) -> dict:
     """The ball spec, its contact law (and fit), each ball test beside the law's value, and
-    the ball against a rigid wall against impact speed (SI): COR, contact time, 99 %-impulse
-    collision time, maximum compression, compression at separation and peak force."""
+    the ball against a rigid flat wall and a rigid 2 5/8 in cylinder against impact speed
+    (SI): COR, contact time, 99 %-impulse collision time, maximum compression, compression at
+    separation and peak force (flat), COR, contact time, compression and peak force
+    (cylinder)."""
     from batcert.physics.balls.fit import test_values
+    from batcert.physics.balls.footprint import stiffness_ratio
     from batcert.specs.ball import ball_tests
+    from batcert.specs.resolve import display_path
 
     b = ball.model
     v = np.asarray(speeds, dtype=float)
     wall = b.law.wall_impact(b.mass, v)  # Nathan's law in closed form, else integrated
+    cylinder = b.law.body_impact(b.mass, v, 0.0, history=False,
+                                 scale=stiffness_ratio(b.radius, 0.5 * CYLINDER_DIAMETER))
     left = getattr(wall, "separation_compression", np.zeros(v.size))
     tests = ball_tests(ball.tests)
     model = test_values(b.law, tests, b.mass, b.radius) if ball.fit is None else ball.fit.model
@@ -96,12 +108,25 @@ def inspect_ball(ball: BallSpec, speeds=(1.0, 11.0, 25.9, 26.8, 45.0, 58.0, 60.8
         fit = {"chi2": ball.fit.chi2, "dof": ball.fit.dof,
                "parameter_uncertainty": dict(ball.fit.uncertainty),
                "held": list(ball.fit.held)}
+    lot = None
+    if ball.lot is not None and ball.reference is not None and ball.fit is not None:
+        ref = ball.reference
+        tested = ball.fit.moved(-ball.lot.shift).wall_impact(b.mass, v)
+        lot = {"bat": display_path(ref.bat), "protocol": display_path(ref.protocol),
+               "value": ref.value, "uncertainty": ref.uncertainty, "source": ref.source,
+               "shift": ball.lot.shift, "u_shift": ball.lot.u_shift,
+               "model_value": ball.lot.model_value, "tested_cor": tested.cor.tolist()}
     return rounded({"name": b.name, "file": ball.path, "sha256": ball.sha256, "mass": b.mass,
                     "radius": b.radius, "contact_model": b.contact_model,
-                    "law": {**b.law.describe(), "summary": b.law.summary()}, "fit": fit, "tests": rows,
+                    "law": {**b.law.describe(), "summary": b.law.summary()}, "fit": fit,
+                    "lot_calibration": lot, "tests": rows,
                     "speeds": list(map(float, speeds)), "cor": wall.cor.tolist(),
                     "contact_time": wall.contact_time.tolist(),
                     "collision_time": wall.collision_time.tolist(),
                     "max_compression": wall.max_compression.tolist(),
                     "separation_compression": np.asarray(left).tolist(),
-                    "peak_force": wall.peak_force.tolist()})
+                    "peak_force": wall.peak_force.tolist(),
+                    "cylinder": {"diameter": CYLINDER_DIAMETER, "cor": cylinder.cor.tolist(),
+                                 "contact_time": cylinder.contact_time.tolist(),
+                                 "max_compression": cylinder.max_compression.tolist(),
+                                 "peak_force": cylinder.peak_force.tolist()}})

@@ -11,6 +11,7 @@ import numpy as np
 from batcert.methods.reduction import HitReduction, reduce_hits
 from batcert.model.build import BuiltBat, build_bat
 from batcert.model.mass import mass_properties
+from batcert.runner.lot import calibrated_lot
 from batcert.specs.ball import BallSpec, load_ball
 from batcert.specs.bat import load_bat
 from batcert.specs.hits import Hits, load_hits
@@ -41,7 +42,7 @@ def load_lab_session(path: str | Path, spec: SessionSpec | None = None) -> LabSe
         field_ = "bat" if "bat" in str(exc) else "ball"
         raise spec.source.problem(field_, str(exc)) from None
     built = build_bat(load_bat(bat_path))
-    ball = load_ball(ball_path)
+    ball = calibrated_lot(load_ball(ball_path))
     hits = load_hits(where.parent / spec.hits, spec.location_from, spec.gate_spacing)
     mp = mass_properties(built, spec.pivot)
     moi, source = (mp.measured_moi_pivot, "measured") if mp.measured_moi_pivot is not None \

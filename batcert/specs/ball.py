@@ -20,7 +20,7 @@ from typing import Any
 
 from batcert.errors import Collector, InputError, Problem
 from batcert.physics.ball import BallModel
-from batcert.physics.balls import LAWS, ContactLaw, PowerLawHysteresis, Viscoelastic
+from batcert.physics.balls import LAWS, ContactLaw, PowerLawHysteresis, TwoTimeViscoelastic, Viscoelastic
 from batcert.physics.balls.fit import BallFit, BallTest, FitError
 from batcert.physics.balls.fit_kept import cached_fit
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked
@@ -34,6 +34,7 @@ from batcert.specs.schema import (
     number,
     quantity,
     section,
+    text,
 )
 from batcert.specs.yamlio import LocatedList, load_yaml
 from batcert.units import DIMENSIONS, UnitError, parse_quantity, read_spread, split_uncertainty, uncertain
@@ -171,7 +172,11 @@ def _read_flat(value: Any) -> float:
 
 
 _HYSTERESIS = ("k1", "alpha")
-_VISCOELASTIC = ("stiffness", "exponent", "relaxed_fraction", "relaxation_time")
+_VISCOELASTIC = TwoTimeViscoelastic.PARAMETERS  # every viscoelastic law's parameters
+
+
+def _own(model: str) -> tuple[str, ...]:
+    return _HYSTERESIS if model == "power-law-hysteresis" else LAWS[model].law.PARAMETERS
 
 
 def _contact_check(values: dict, data, errors: Collector, path: str) -> None:
@@ -179,7 +184,7 @@ def _contact_check(values: dict, data, errors: Collector, path: str) -> None:
     takes any of its four parameters (those not given are fitted to the tests, the given ones
     held: a ball known only by its marks)."""
     model = values["model"]
-    own = _HYSTERESIS if model == "power-law-hysteresis" else _VISCOELASTIC
+    own = _own(model)
     for name in _HYSTERESIS + _VISCOELASTIC:
         if name not in own and values.get(name) is not None:
             errors.add(data.key_pos[name][0], f"{path}.{name}",
@@ -206,8 +211,41 @@ CONTACT_SCHEMA = Schema("contact law", (
     Field("relaxed_fraction", number(exclusive_minimum=0.0, maximum=1.0), "viscoelastic: "
           "relaxed over instantaneous stiffness."),
     Field("relaxation_time", quantity("time", positive=True), "viscoelastic: relaxation time "
-          "tau."),
+          "tau (viscoelastic-2: the slow branch's)."),
+    Field("fast_share", number(exclusive_minimum=0.0, maximum=0.99), "viscoelastic-2: "
+          "the fast branch's share of the relaxing stiffness k0 - k_inf."),
+    Field("fast_relaxation_time", quantity("time", positive=True), "viscoelastic-2: the fast "
+          "branch's relaxation time tau_f."),
 ), checks=(_contact_check,))
+
+def _cor_kind() -> Kind:
+    def parse(value: Any, errors: Collector, path: str):
+        try:
+            return _cor_value(value)
+        except ValueError as exc:
+            raise FieldError(str(exc)) from None
+    return Kind("number in (0, 1], may carry `+/- u`", parse)
+
+
+def _reference_check(values: dict, data, errors: Collector, path: str) -> None:
+    if not getattr(values.get("value"), "u", 0) > 0:
+        errors.add(data.key_pos.get("value", (data.line, None))[0], f"{path}.value",
+                   "a reference bat's value needs its standard uncertainty ('0.490 +/- 0.010')")
+
+
+REFERENCE_SCHEMA = Schema("reference bat", (
+    Field("bat", label(), "The reference bat: a shipped name (`ash-34`) or a bat file's path "
+          "(relative to this file).", required=True),
+    Field("protocol", label(), "The protocol it was measured under: a shipped id "
+          "(`ncaa-bbcor`) or a path (relative to this file). Its own ball is not used.",
+          required=True),
+    Field("value", _cor_kind(), "The protocol's metric measured on the reference bat with this "
+          "ball lot, with its standard uncertainty.", required=True),
+    Field("source", text(), "Where the value comes from."),
+), doc="A reference bat's measurement with this ball lot: the lot is calibrated on it (a lab "
+       "checks its lots this way), by moving every COR test together (the fit's lot direction) "
+       "until the model's metric for the reference bat equals the value. A CALIBRATION: the "
+       "reference bat is then no longer a validation.", checks=(_reference_check,))
 
 BALL_SCHEMA = Schema("ball", (
     Field("name", label(), "Ball name shown in reports.", required=True),
@@ -219,7 +257,22 @@ BALL_SCHEMA = Schema("ball", (
           required=True),
     *(Field(name, kind, doc, required=name == "cor") for name, (kind, doc) in TESTS.items()),
     Field("contact", section(CONTACT_SCHEMA), "Contact law and its parameters.", required=True),
+    Field("reference_bat", section(REFERENCE_SCHEMA), "A reference bat's measurement that "
+          "calibrates the ball lot (fitted viscoelastic balls only)."),
 ))
+
+
+@dataclass(frozen=True)
+class ReferenceBat:
+    """A reference bat's measurement with the ball lot (the ball file's ``reference_bat``):
+    the resolved bat and protocol files, the measured value and its standard uncertainty."""
+
+    bat: str  # the resolved bat file
+    protocol: str  # the resolved protocol file
+    value: float
+    uncertainty: float
+    source: str
+    line: int | None  # the value's line
 
 
 @dataclass(frozen=True)
@@ -231,6 +284,10 @@ class BallSpec:
     model: BallModel
     tests: tuple[tuple[str, TestPoint], ...] = ()  # (file key, point) of every test point
     fit: BallFit | None = None
+    reference: ReferenceBat | None = None  # a reference bat that calibrates the lot
+    # the calibration applied (batcert.runner.lot.LotCalibration: the lot's shift along the
+    # fit's lot direction and the model's value for the reference bat), None before
+    lot: Any = None
 
     @property
     def path(self) -> str:
@@ -260,18 +317,42 @@ def load_ball(path: str | Path) -> BallSpec:
         cor = v["cor"]
         law: ContactLaw = PowerLawHysteresis(
             c["k1"], c["alpha"], tuple(p.condition for p in cor), tuple(p.value for p in cor))
-    elif all(c[n] is not None for n in _VISCOELASTIC):
-        law = Viscoelastic(c["stiffness"], c["exponent"], c["relaxed_fraction"],
-                           c["relaxation_time"])
+    elif all(c[n] is not None for n in _own(c["model"])):
+        law = LAWS[c["model"]].law(*(c[n] for n in _own(c["model"])))
     else:
-        held = tuple((n, float(c[n])) for n in _VISCOELASTIC if c[n] is not None)
-        fit = _fitted(path, data, tests, float(mass), radius, held)
+        held = tuple((n, float(c[n])) for n in _own(c["model"]) if c[n] is not None)
+        fit = _fitted(path, data, tests, float(mass), radius, held, c["model"])
         law = fit.law
     model = BallModel(v["name"], mass, radius, law)
-    return BallSpec(Source.of(path, data), v["name"], model, tests, fit)
+    reference = _reference(path, data, v["reference_bat"], fit) if v["reference_bat"] else None
+    return BallSpec(Source.of(path, data), v["name"], model, tests, fit, reference)
 
 
-def _fitted(path, data, tests, mass: float, radius: float, held=()) -> BallFit:
+def _reference(path, data, r: dict, fit: BallFit | None) -> ReferenceBat:
+    """The ``reference_bat`` section with its files resolved (an input error at the line of
+    one that does not resolve, or where the law is not a fitted one)."""
+    from batcert.specs.resolve import NotFound, resolve
+
+    node = data["reference_bat"]
+    if fit is None:
+        raise InputError([Problem(str(path), data.key_pos["reference_bat"][0], "reference_bat",
+                                  "a reference bat calibrates a ball lot along its fit: only a "
+                                  "viscoelastic law fitted to ball tests takes one")])
+    found, problems = {}, []
+    for key in ("bat", "protocol"):
+        try:
+            found[key] = resolve(key, r[key], relative_to=Path(path))
+        except NotFound as exc:
+            problems.append(Problem(str(path), node.key_pos[key][0], f"reference_bat.{key}",
+                                    str(exc)))
+    if problems:
+        raise InputError(problems)
+    return ReferenceBat(str(found["bat"]), str(found["protocol"]), float(r["value"]),
+                        float(r["value"].u), r["source"] or "", node.key_pos["value"][0])
+
+
+def _fitted(path, data, tests, mass: float, radius: float, held=(),
+            law: str = Viscoelastic.name) -> BallFit:
     """:func:`cached_fit` of the file's tests; its refusal as an input error at the test."""
     problems = []
     for key, p in tests:
@@ -281,7 +362,7 @@ def _fitted(path, data, tests, mass: float, radius: float, held=()) -> BallFit:
     if problems:
         raise InputError(problems)
     try:
-        return cached_fit(ball_tests(tests), mass, radius, held)
+        return cached_fit(ball_tests(tests), mass, radius, held, law)
     except FitError as exc:
         if exc.test is not None:
             key, p = tests[exc.test]

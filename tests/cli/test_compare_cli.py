@@ -68,9 +68,9 @@ def test_reference_option(batcert_cli):
 
 
 def test_failing_limit_exits_1(batcert_cli):
-    # rigid BBCOR is the ball's COR at 136 mph, about 0.51 > 0.500, for both bats
-    result = batcert_cli("compare", ASH, ALU, "-p", "ncaa-bbcor", "--engine", "rigid",
-                         "--no-reports")
+    # the aluminium bat's predicted BBCOR, about 0.57, fails 0.500 (ash passes at 0.490, the
+    # value the ball lot is calibrated on)
+    result = batcert_cli("compare", ASH, ALU, "-p", "ncaa-bbcor", "--no-reports")
     assert result.exit_code == 1
     assert "ncaa-bbcor" in result.stdout
 

@@ -110,7 +110,10 @@ def test_ball_values(repo_root):
     ball = spec.model
     assert ball.mass == pytest.approx(5.125 * OZ)
     assert ball.radius == pytest.approx(0.0369)
-    assert ball.contact_model == "viscoelastic" and spec.fit is not None
+    assert ball.contact_model == "viscoelastic-2" and spec.fit is not None
+    assert spec.fit.held == ("fast_relaxation_time",)
+    assert spec.reference is not None and spec.reference.value == pytest.approx(0.490)
+    assert Path(spec.reference.bat).name == "ash-34.yaml" and spec.lot is None  # not yet applied
     speeds = [p.condition for key, p in spec.tests if key == "cor"]
     assert speeds == pytest.approx([1.0, 85 * 0.3048, 58.0])
     assert [key for key, _ in spec.tests].count("collision_time") == 4

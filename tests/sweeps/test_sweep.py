@@ -214,14 +214,36 @@ def test_two_worker_processes_give_the_serial_numbers(monkeypatch):
     assert parallel.to_dict() == serial.to_dict()
 
 
-def test_a_short_sweep_with_workers_starts_none(monkeypatch):
-    # issue 29: --workers 2 on a sweep of a fraction of a second took longer than serial (the
-    # processes' start-up); the first chunk shows the rest is not worth them
+def _timed_chunks(monkeypatch, seconds: float) -> list:
+    """The first chunk timed at ``seconds`` whatever the machine's load (issue 40: the test
+    failed on a loaded machine, where the real first chunk took long enough to start workers,
+    which the mock below then never ran), and worker start-ups recorded, not made."""
+    ticks = iter([0.0, seconds])
+    monkeypatch.setattr(execute_module, "clock", lambda: next(ticks))
     started = []
     monkeypatch.setattr(execute_module, "_on_processes", lambda *a: started.append(a))
+    return started
+
+
+def test_a_short_sweep_with_workers_starts_none(monkeypatch):
+    # issue 29: --workers 2 on a sweep of a fraction of a second took longer than serial (the
+    # processes' start-up); the first chunk shows the rest is not worth them (a chunk of 20 ms:
+    # the other chunk would take 20 ms here, against 2 x 0.5 s of start-up)
     plan = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:60m/s:12"], engine="rigid")
-    assert run_sweep(plan, workers=2).to_dict() == run_sweep(plan).to_dict()
+    serial = run_sweep(plan).to_dict()
+    started = _timed_chunks(monkeypatch, 0.02)
+    assert run_sweep(plan, workers=2).to_dict() == serial
     assert started == []
+
+
+def test_a_long_sweep_with_workers_starts_them(monkeypatch):
+    # a sweep of 40 variants whose first chunk takes 5 s: the chunks left would take 45 s here,
+    # against 2 x 0.5 s of start-up: the workers are started, once, with every chunk left
+    started = _timed_chunks(monkeypatch, 5.0)
+    plan = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=40m/s:60m/s:40"], engine="rigid")
+    with pytest.raises(KeyError):  # the mock ran no chunk: the sweep cannot be collected
+        run_sweep(plan, workers=2)
+    assert len(started) == 1 and len(started[0][0]) == len(plan.chunks()) - 1
 
 
 # ---- the journal ----------------------------------------------------------------------------

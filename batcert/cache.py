@@ -70,8 +70,7 @@ def warnings_as_lines(say: Callable[[str], None]) -> Iterator[None]:
 
 TAG_NAME = "CACHEDIR.TAG"
 TAG = "Signature: 8a477f597d28d172789f06886806bc55\n# a cache directory tag, written by batcert\n"
-# the names of the files batcert writes in a kind's folder: array entries, their temporary
-# files while written, and Jinja's compiled templates (the ``templates`` folder)
+# the files batcert writes in a kind's folder: entries, their temporary files, Jinja's templates
 ENTRY_NAME = re.compile(r"[0-9a-f]{32}\.arrays")
 TEMP_NAME = re.compile(r"\.batcert-[A-Za-z0-9_]+\.tmp")
 OWN_NAMES = (ENTRY_NAME, TEMP_NAME, re.compile(r"__jinja2_[0-9a-f]+\.cache"))

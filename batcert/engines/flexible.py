@@ -78,9 +78,11 @@ __all__ = ["BALL_LOSS", "CONTACT_SURFACES", "DEFAULT_MODES", "DEFAULT_SHELL_FREQ
            "rigid_mode_velocities"]
 
 # the largest barrel deflection, in wall thicknesses, for which the linear wall is taken to hold:
-# membrane stretching stiffens a plate by some 5-10 % at half its thickness (von Karman plate
-# theory; Timoshenko & Woinowsky-Krieger, Theory of plates and shells, 1959, Sec. 96-97), and
-# the runner warns beyond it (docs/physics.md)
+# a clamped plate's membrane stretching changes its stiffness by some 5-10 % at half its
+# thickness (von Karman plate theory; Timoshenko & Woinowsky-Krieger, Theory of plates and
+# shells, 1959, Sec. 96-97), and the runner warns beyond it (docs/physics.md). For a barrel's
+# ovalling (hoop) modes the direction is not established: the nonlinear-shell literature
+# (Amabili's work on circular cylindrical shells) reports softening for such modes
 LINEAR_WALL = 0.5
 # Accuracy-driven defaults: every exit speed and result of the shipped bats under the shipped
 # protocols within 0.01 % of the converged engine (48 modes, 2.5 us, shell modes to 16 kHz),

@@ -99,10 +99,10 @@ METRICS: dict[str, Metric] = {m.name: m for m in (
            "bpf", lab=True),
     Metric("bbcor", "BBCOR", "Ball-bat COR from the collision efficiency, e_A (1 + k) + k "
            "(ASTM F2219, NCAA).", "bbcor", model_offset=(
-               "the model puts wood bats 0.04-0.05 above measured wood BBCOR (NCAA's best "
-               "wood is just below 0.50) and typical alloy bats a further 0.06-0.07 above "
-               "wood, where certified alloy bats measure at wood level (docs/validation.md, "
-               "sections 2 and 3)"), lab=True),
+               "wood bats sit at the NCAA's wood level (0.490) because the ball lot is "
+               "CALIBRATED on a wood reference bat there (a calibration, not a validation); "
+               "typical alloy bats come out 0.05-0.07 above wood, where certified alloy bats "
+               "measure at wood level (docs/validation.md, sections 2 and 3)"), lab=True),
     Metric("collision-efficiency", "collision efficiency e_A",
            "e_A = (v_b - v_bat) / (v_pitch + v_bat) (ASTM F2219).", "collision_efficiency",
            column="e_A", lab=True),

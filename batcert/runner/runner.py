@@ -289,9 +289,11 @@ def _wall_warning(conds: list[Condition], diag: dict[str, np.ndarray]) -> list[s
             mm = float(np.asarray(diag["barrel_deflection"])[i, 0]) * 1e3
             out.append(f"{c.name}: the barrel's wall deflects about {mm:.1f} mm under the peak "
                        f"force, {r:.1f} times its thickness; the model's wall is linear "
-                       "elastic, and at such a deflection a real wall stiffens (membrane "
-                       "stretching) and may dent, both of which the model leaves out and both "
-                       "of which lower the result (docs/physics.md)")
+                       "elastic, and at such a deflection a real wall is not: it may dent, and "
+                       "its large-amplitude ovalling may soften or stiffen it (the nonlinear "
+                       "shell literature reports softening for such modes); the model leaves "
+                       "both out and the direction of their effect is not established "
+                       "(docs/physics.md)")
     return out
 
 

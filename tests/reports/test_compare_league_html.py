@@ -106,7 +106,8 @@ def study(tmp_path_factory) -> tuple[ComparisonResult, Path]:
 
 @pytest.fixture(scope="module")
 def limited(tmp_path_factory) -> tuple[ComparisonResult, str]:
-    """Three bats under a protocol with a limit (rigid BBCOR is about 0.51 > 0.500: all fail)."""
+    """Three bats under a protocol with a limit (rigid BBCOR is about 0.48 < 0.500 with the ball
+    lot calibrated on a wood bat's 0.490 on the flexible engine: all pass)."""
     result = run_comparison([ASH, ALU, R161], ["ncaa-bbcor", "stationary-ball"], engine="rigid")
     return result, render_comparison_html(result)
 
@@ -178,8 +179,8 @@ def test_comparison_limit_verdicts_and_speeds(limited):
     check_page(html)
     found = badges(html)
     bbcor = result.protocol("ncaa-bbcor")
-    assert all(v and v.lower() == "fail" for v in bbcor.verdicts.values())
-    assert found.count(("fail", "predicted FAIL")) == len(result.bats)  # the model's verdict
+    assert all(v and v.lower() == "pass" for v in bbcor.verdicts.values())
+    assert found.count(("pass", "predicted PASS")) == len(result.bats)  # the model's verdict
     assert "limit 0.500" in html  # the limit line on the BBCOR chart
     assert "on edge: not located" in html  # rigid sweet spots on the window edge are flagged
     for b in result.bats:

@@ -59,7 +59,7 @@ def test_certificate_states_basis_print_header_and_page_numbers(batcert_cli, tmp
         assert "A model prediction, not a certificate: values computed by batcert's rigid " \
                "model of the bat from its specification, not measured on a bench" in text
         # the metric's known offset (docs/validation.md), from the metrics registry
-        assert "Known offset of the model: the model puts wood bats 0.04-0.05 above" in text
+        assert "Known offset of the model: wood bats sit at the NCAA's wood level" in text
     assert 'content: "page " counter(page) " of " counter(pages)' in html
     assert "@top-left" in html and "ncaa\\2d bbcor" in html  # the certificate's header
     assert "| Correction | Value | Unit |" in md

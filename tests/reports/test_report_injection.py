@@ -25,7 +25,7 @@ def test_a_name_with_blank_lines_injects_nothing_into_markdown_or_the_terminal(b
                                                                               tmp_path):
     res = batcert_cli("run", _bat(tmp_path), "-p", "ncaa-bbcor", "--engine", "rigid", "--out",
                       tmp_path / "out")
-    assert res.exit_code == 1
+    assert res.exit_code == 0  # rigid ash: BBCOR about 0.48, a predicted pass
     [md] = (tmp_path / "out").glob("*.md")
     for line in md.read_text(encoding="utf-8").splitlines():
         assert not line.startswith("<script>"), line  # no raw HTML block

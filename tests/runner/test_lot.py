@@ -32,7 +32,7 @@ def test_the_shipped_lot_meets_its_reference_bat(bbcor):
     assert abs(ball.lot.model_value - 0.490) <= lot_module.TOLERANCE
     result = run_protocol(load_bat_any("ash-34").built, bbcor.protocol, ball, FlexibleEngine())
     assert result.value == pytest.approx(0.490, abs=lot_module.TOLERANCE)
-    # a deader lot than the tested balls (measured -2.67 +/- 0.64 standard uncertainties): the
+    # a deader lot than the tested balls (measured -2.68 +/- 0.64 standard uncertainties): the
     # model puts a wood bat above the ball's tests, and the calibration takes that up
     assert -4.0 < ball.lot.shift < -1.0 and 0.3 < ball.lot.u_shift < 1.0
     assert ball.lot.u_shift == pytest.approx(0.010 / ball.lot.slope)
@@ -68,7 +68,7 @@ def _ball_file(tmp_path, reference: str, law: str = "viscoelastic-2") -> Path:
     head, _, _ = text.partition("reference_bat:")
     if law != "viscoelastic-2":
         head = head.replace("model: viscoelastic-2", f"model: {law}\n  k1: 6.53e7\n  alpha: 1.84")
-        head = head.replace("  fast_relaxation_time: 0.020 ms\n", "")
+        head = head.replace("  fast_relaxation_time: 0.030 ms\n", "")
     path = tmp_path / "ball.yaml"
     path.write_text(head + "reference_bat:\n" + reference, encoding="utf-8")
     return path

@@ -130,13 +130,13 @@ def test_range_needs_two_ends(bbcor_052):
 
 
 def test_flexible_wall_root_is_bracketed(tmp_path):
-    """aluminium-34's wall under a 0.58 BBCOR limit, the shipped ball, flexible engine (about
-    4 s): BBCOR falls from 0.612 at the nominal 2.7 mm (measured; 0.574 at 125 %, 0.553 at
+    """aluminium-34's wall under a 0.55 BBCOR limit, the shipped ball, flexible engine (about
+    4 s): BBCOR falls from 0.571 at the nominal 2.7 mm (measured; 0.527 at 125 %, 0.504 at
     175 %) toward the rigid bat's as the wall thickens, so one root lies in 100 %..175 %; the
     margin has opposite signs a tolerance (1 um) either side."""
-    path = tmp_path / "bbcor-058.yaml"
+    path = tmp_path / "bbcor-055.yaml"
     path.write_text((Path(__file__).resolve().parents[2] / "protocols" / "ncaa-bbcor.yaml")
-                    .read_text(encoding="utf-8").replace("max: 0.500", "max: 0.58"))
+                    .read_text(encoding="utf-8").replace("max: 0.500", "max: 0.55"))
     result = run_design("aluminium-34", str(path), "wall", "100%:175%", engine="flexible",
                         points=3)
     (root,) = result.design.roots

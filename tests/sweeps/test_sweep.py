@@ -379,14 +379,21 @@ def test_a_binary_journal_is_refused_cleanly(tmp_path, counted):
 def test_a_warning_names_the_variants_it_came_from():
     """A warning of some variants says which (by their values), one of every variant says
     so: a user can find the variant to look at."""
-    plan = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=20m/s:70m/s:3"], engine="rigid")
+    # the thin and the nominal wall deflect past half their thickness, each by its own amount
+    # (two warnings, one variant each); the thick wall does not (flexible engine, about 2 s)
+    plan = plan_sweep("aluminium-34", "ncaa-bbcor", ["wall=60%:140%:3"], engine="flexible")
     warnings = run_sweep(plan).warnings
-    edge = [w for w in warnings if "search window's edge" in w]
-    assert edge and all(w.endswith(")") for w in edge)
-    named = " ".join(edge)
-    for speed in ("pitch_speed=20 m/s", "pitch_speed=45 m/s", "pitch_speed=70 m/s"):
-        assert named.count(speed) == 1, (speed, edge)  # each variant's edge, once
-    assert all(re.search(r"\((\d+ of 3 variants: |all 3 variants)", w) for w in edge)
+    wall = [w for w in warnings if "wall deflects" in w]
+    assert len(wall) == 2 and all(w.endswith(")") for w in wall)
+    named = " ".join(wall)
+    for variant in ("wall=0.00162 m", "wall=0.0027 m"):
+        assert named.count(variant) == 1, (variant, wall)  # each variant's warning, once
+    assert "wall=0.00378 m" not in named
+    assert all(re.search(r"\(1 of 3 variants: ", w) for w in wall)
+    # one warning of every variant says so (a rigid ash bat's edge at every pitch speed)
+    rigid = plan_sweep("ash-34", "ncaa-bbcor", ["pitch_speed=20m/s:70m/s:3"], engine="rigid")
+    edge = [w for w in run_sweep(rigid).warnings if "search window's edge" in w]
+    assert edge and all(w.endswith("(all 3 variants)") for w in edge)
 
 
 def test_a_journal_removed_meanwhile_is_made_anew_and_never_written_through_a_link(tmp_path):

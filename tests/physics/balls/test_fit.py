@@ -109,13 +109,13 @@ def test_collegiate_ball_fit_reproduces_its_tests(collegiate, collegiate_fit):
     spec, tests, mass, radius = collegiate
     got = collegiate_fit
     residuals = np.asarray(got.residuals)
-    # every test within one standard uncertainty (measured <= 0.77: the 11 m/s collision time)
+    # every test within one standard uncertainty (measured <= 0.81: the 11 m/s collision time)
     assert np.all(np.abs(residuals) <= 1.0)
     # two relaxation times, the fast one held: five parameters for seven tests
     assert got.law.name == "viscoelastic-2" and got.held == ("fast_relaxation_time",)
     assert got.dof == len(tests) - 5 == 2
     assert got.chi2 == pytest.approx(float(residuals @ residuals), rel=1e-12)
-    assert 0 < got.chi2 < 3 * got.dof  # measured 1.06
+    assert 0 < got.chi2 < 3 * got.dof  # measured 1.12
     value = np.array([t.value for t in tests])
     sigma = np.array([t.uncertainty for t in tests])
     np.testing.assert_allclose(got.model, value + residuals * sigma, rtol=1e-12)

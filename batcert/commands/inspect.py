@@ -111,7 +111,7 @@ def inspect_ball(ball: BallSpec, speeds=(1.0, 5.0, 11.0, 20.0, 25.9, 26.8, 30.0,
     lot = None
     if ball.lot is not None and ball.reference is not None and ball.fit is not None:
         ref = ball.reference
-        tested = ball.fit.moved(-ball.lot.shift).wall_impact(b.mass, v)
+        tested = ball.lot.tested.law.wall_impact(b.mass, v)
         lot = {"bat": display_path(ref.bat), "protocol": display_path(ref.protocol),
                "value": ref.value, "uncertainty": ref.uncertainty, "source": ref.source,
                "shift": ball.lot.shift, "u_shift": ball.lot.u_shift,

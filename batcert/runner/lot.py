@@ -2,25 +2,30 @@
 
 A ball file may carry a reference bat's measurement with the lot (``reference_bat``: a bat, the
 protocol it was measured under, the value with its standard uncertainty). The ball's law is
-first fitted to its ball tests (:mod:`batcert.physics.balls.fit`); the lot is then moved along
-the fit's lot direction (every COR test up or down together by ``k`` of its standard
-uncertainties, :meth:`~batcert.physics.balls.fit.BallFit.moved`) until the model's metric for
-the reference bat under that protocol, on the flexible engine with its default settings,
-equals the measured value (the secant method on ``k``, each step a full protocol run with its
-location search; the runs of one step solved together).
+first fitted to its ball tests (:mod:`batcert.physics.balls.fit`). The lot is the ball whose
+every COR test lies ``k`` of its standard uncertainties from the tested balls' (a livelier or
+deader lot, the same notion ``run --uncertainty`` draws), its law moved along the fit's
+linearisation (:meth:`~batcert.physics.balls.fit.BallFit.moved`: smooth in ``k``, where a refit
+of the moved tests is rough at about 1e-4 in a bat's metric); ``k`` is found where the model's
+metric for the reference bat under that protocol, on the flexible engine with its default
+settings, equals the measured value. The search: the secant method from ``k = 0`` and ``-1``;
+where it fails (far from the tests the linearisation need not keep the metric monotonic in
+``k``), a grid over :data:`SHIFT_BOUNDS` in one batch and regula falsi (Illinois) in the sign
+change nearest ``k = 0``. Every evaluation is a full protocol run with its location search.
 
 The calibration is an INPUT, not a result: it makes the reference bat come out at its measured
 value by construction, so that bat (and bats like it) are no longer a validation of the model.
 It is made once per ball and kept (workspace kind ``ball-lot``, also on disk); every command
-that loads the ball uses the calibrated lot, whichever engine it then runs (the lot is a
-property of the balls, not of an engine). The standard uncertainty of the shift is the
-measurement's divided by the slope of the metric in ``k`` (GUM 5.1.2).
+that loads the ball uses the calibrated lot, whichever engine
+it then runs (the lot is a property of the balls, not of an engine). The standard uncertainty
+of ``k`` is the measurement's divided by the slope of the metric in ``k`` (GUM 5.1.2).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -36,7 +41,7 @@ from batcert.specs.protocol import load_protocol
 
 SHIFT_BOUNDS = (-8.0, 8.0)  # [standard uncertainties of the COR tests] the lot may move
 TOLERANCE = 1e-5  # [metric] the reference bat's value is met to this
-MAX_STEPS = 8
+MAX_STEPS = 12
 
 
 @dataclass(frozen=True)
@@ -47,12 +52,13 @@ class LotCalibration:
     u_shift: float  # its standard uncertainty, from the measurement's
     model_value: float  # the model's metric for the reference bat at the shift
     slope: float  # d metric / d shift there
+    tested: Any = field(default=None, compare=False)  # the tested balls' fit (not kept)
 
 
 def calibrated_lot(ball: BallSpec) -> BallSpec:
     """``ball`` with its lot calibrated on its reference bat (module notes), or ``ball``
-    itself when it has none. An input error at the ball file's ``reference_bat`` when the lot
-    cannot reach the measured value within :data:`SHIFT_BOUNDS`."""
+    itself when it has none. An input error at the ball file's ``reference_bat`` value when
+    no lot within :data:`SHIFT_BOUNDS` reaches the measured value."""
     ref, fit = ball.reference, ball.fit
     if ref is None or fit is None:
         return ball
@@ -64,13 +70,14 @@ def calibrated_lot(ball: BallSpec) -> BallSpec:
     if not np.isfinite(cal.shift):
         raise InputError([Problem(ball.path, ref.line, "reference_bat", _unreachable(cal, ref))])
     law = fit.moved(cal.shift)
-    return replace(ball, model=replace(ball.model, law=law), fit=replace(fit, law=law), lot=cal)
+    return replace(ball, model=replace(ball.model, law=law), fit=replace(fit, law=law),
+                   lot=replace(cal, tested=fit))
 
 
 def _unreachable(cal: LotCalibration, ref) -> str:
-    return (f"the ball lot cannot be calibrated on its reference bat: moving every COR test by "
-            f"{SHIFT_BOUNDS[0]:g} to {SHIFT_BOUNDS[1]:+g} standard uncertainties gives the "
-            f"reference bat {cal.model_value:.4f} at best, against the measured "
+    return (f"the ball lot cannot be calibrated on its reference bat: a lot whose COR tests lie "
+            f"{SHIFT_BOUNDS[0]:g} to {SHIFT_BOUNDS[1]:+g} standard uncertainties from the tested "
+            f"balls' comes nearest at {cal.model_value:.4f}, against the measured "
             f"{ref.value:.4f}")
 
 
@@ -88,22 +95,72 @@ def _calibrate(ball_path: str, ball_sha: str, bat: str, bat_sha: str, protocol: 
     spec = load_protocol(Path(protocol))
     engine = get_engine("flexible")
 
-    def values(shifts: list[float]) -> list[float]:
-        balls = [replace(ball, model=replace(ball.model, law=fit.moved(k)), reference=None)
-                 for k in shifts]
-        return [r.value for r in run_protocols([(built, spec, b) for b in balls], engine)]
+    def gaps(shifts) -> np.ndarray:
+        """The model's value less the measured one at each shift (NaN where the moved law
+        leaves its plausible range)."""
+        laws = []
+        for k in shifts:
+            try:
+                laws.append(fit.moved(float(k)))
+            except ValueError:
+                laws.append(None)
+        balls = [replace(ball, model=replace(ball.model, law=law), reference=None)
+                 for law in laws if law is not None]
+        got = iter(r.value for r in run_protocols([(built, spec, b) for b in balls], engine))
+        return np.array([next(got) - ref.value if law is not None else np.nan for law in laws])
 
+    def found(k: float, slope: float, gap: float) -> LotCalibration:
+        return LotCalibration(float(k), float(ref.uncertainty / abs(slope)), float(ref.value + gap),
+                              float(slope))
+
+    k = _secant(gaps)
+    if k is not None:
+        return found(*k)
+    return _bracketed(gaps, found, ref.value)
+
+
+def _secant(gaps) -> tuple[float, float, float] | None:
+    """The secant method from 0 and -1: ``(shift, slope, gap)``, None where it does not
+    converge within the bounds."""
     k0, k1 = 0.0, -1.0
-    v0, v1 = values([k0, k1])
+    g0, g1 = gaps([k0, k1])
     for _ in range(MAX_STEPS):
-        slope = (v1 - v0) / (k1 - k0)
+        slope = (g1 - g0) / (k1 - k0)
         if not slope > 0:
-            break
-        k2 = float(np.clip(k1 + (ref.value - v1) / slope, *SHIFT_BOUNDS))
-        if k2 == k1:  # at a bound, and the value lies beyond it
-            break
-        (v2,) = values([k2])
-        k0, v0, k1, v1 = k1, v1, k2, v2
-        if abs(v2 - ref.value) <= TOLERANCE:
-            return LotCalibration(k2, ref.uncertainty / slope, v2, slope)
-    return LotCalibration(float("nan"), float("nan"), v1, float("nan"))
+            return None
+        k2 = float(np.clip(k1 - g1 / slope, *SHIFT_BOUNDS))
+        if k2 == k1:
+            return None
+        (g2,) = gaps([k2])
+        if not np.isfinite(g2):
+            return None
+        k0, g0, k1, g1 = k1, g1, k2, g2
+        if abs(g2) <= TOLERANCE:
+            return k2, (g1 - g0) / (k1 - k0) if k1 != k0 else slope, g2
+    return None
+
+
+def _bracketed(gaps, found, value: float) -> LotCalibration:
+    """A grid over the bounds in one batch, then regula falsi (Illinois) in the sign change
+    nearest 0; NaN with the nearest value reached where the grid has no sign change."""
+    grid = np.linspace(*SHIFT_BOUNDS, 17)
+    g = gaps(grid)
+    change = [i for i in range(grid.size - 1) if np.isfinite(g[i]) and np.isfinite(g[i + 1])
+              and g[i] * g[i + 1] <= 0]
+    if not change:
+        nearest = float(g[int(np.nanargmin(np.abs(g)))]) if np.any(np.isfinite(g)) else np.nan
+        return LotCalibration(float("nan"), float("nan"), value + nearest, float("nan"))
+    i = min(change, key=lambda j: abs(grid[j] + grid[j + 1]))
+    a, ga, b, gb = float(grid[i]), float(g[i]), float(grid[i + 1]), float(g[i + 1])
+    for _ in range(3 * MAX_STEPS):
+        k = b - gb * (b - a) / (gb - ga)
+        (gk,) = gaps([k])
+        if abs(gk) <= TOLERANCE:
+            return found(float(k), (gk - gb) / (k - b) if k != b else (gb - ga) / (b - a),
+                         float(gk))
+        if gk * gb < 0:
+            a, ga = b, gb
+        else:
+            ga = ga / 2  # Illinois: halve the end that stays
+        b, gb = k, float(gk)
+    return LotCalibration(float("nan"), float("nan"), value + gb, float("nan"))

@@ -115,3 +115,20 @@ def test_a_value_the_lot_cannot_reach_is_an_input_error(tmp_path):
     text = exc.value.render()
     assert f"{path}:{_line_of(path, 'value:')}:" in text
     assert "cannot be calibrated on its reference bat" in text and "0.9500" in text
+
+
+def test_a_metric_that_is_not_monotonic_near_the_tests_is_bracketed():
+    # the secant from 0 and -1 meets a falling metric there (the linearised lot need not be
+    # monotonic far from the tests): the grid over the bounds finds the sign change nearest 0
+    # and regula falsi the root, to the tolerance; a value never reached is NaN with the nearest
+    def gaps(shifts):
+        k = np.asarray(shifts, dtype=float)
+        return (k - 2.3) ** 2 - 1.0  # roots at 1.3 and 3.3 (off the grid); falling at 0 and -1
+
+    assert lot_module._secant(gaps) is None
+    cal = lot_module._bracketed(gaps, lambda k, slope, gap: lot_module.LotCalibration(
+        k, 0.01 / slope, 0.49 + gap, slope), 0.49)
+    assert cal.shift == pytest.approx(1.3, abs=1e-4)
+    assert cal.slope == pytest.approx(-2.0, rel=0.1)  # the last secant's: the derivative -2
+    never = lot_module._bracketed(lambda s: np.asarray(s, dtype=float) ** 2 + 0.05, None, 0.49)
+    assert np.isnan(never.shift) and never.model_value == pytest.approx(0.54)

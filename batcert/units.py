@@ -163,6 +163,9 @@ def registry():
     import pint
 
     ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    # the ASCII spellings of the micro- units that labs type (issue 40: "um" was refused)
+    ureg.define("um = micrometer")
+    ureg.define("us = microsecond")
     return ureg
 
 

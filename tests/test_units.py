@@ -38,6 +38,9 @@ def test_every_example_parses(dimension):
     ("2.2 kHz", "frequency", 2200.0, 1e-12),
     ("0.5 s", "time", 0.5, 1e-12),
     ("1.2e3 mm", "length", 1.2, 1e-12),
+    # the ASCII micro- spellings labs type (issue 40: "um" was an unknown unit)
+    ("250 um", "length", 250e-6, 1e-12),
+    ("30 us", "time", 30e-6, 1e-12),
 ])
 def test_conversions(text, dimension, si, rel):
     assert parse_quantity(text, dimension) == pytest.approx(si, rel=rel)

@@ -56,7 +56,8 @@ def _temperature(ctx, param, value):
     except (KeyError, ValueError, IndexError):
         raise click.BadParameter(f"cannot read {value!r}: give a number with F, C or K, "
                                  "e.g. 70F or 21C") from None
-    if not 230 <= kelvin <= 330:
+    # -43 to 57 C, ends included (issue 40: 57C itself was refused by a bound in kelvin)
+    if not -43.0 - 1e-9 <= kelvin - 273.15 <= 57.0 + 1e-9:  # compared in C: 1e-9 of rounding
         raise click.BadParameter(f"{value} is outside -43 to 57 C")
     return kelvin
 

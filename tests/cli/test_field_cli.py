@@ -163,6 +163,8 @@ def test_unknown_batter_is_a_usage_error(batcert_cli, tmp_path):
 @pytest.mark.parametrize("args, message", [
     (("--temperature", "70X"), "cannot read '70X'"),
     (("--temperature", "500F"), "outside"),
+    (("--temperature", "57.1C"), "outside -43 to 57 C"),
+    (("--temperature", "-43.1C"), "outside -43 to 57 C"),
     (("--pitch", "80"), "a unit is required"),
     (("--engine", "warp"), "'warp' is not one of"),
     (("--reference", "ash-3"), "did you mean 'ash-34'?"),
@@ -172,6 +174,13 @@ def test_bad_values_are_usage_errors(batcert_cli, tmp_path, args, message):
     res = batcert_cli("field", "ash-34", "--out", out, *args)
     assert res.exit_code == 2 and message in res.stderr
     assert not out.exists()
+
+
+@pytest.mark.parametrize("end", ["57C", "-43C"])
+def test_a_temperature_bound_accepts_its_own_end(batcert_cli, end):
+    # issue 40: "57C" was refused as "outside -43 to 57 C" (the bound was 330 K, 56.85 C)
+    res = batcert_cli("field", "ash-34", *RIGID, "--no-reports", "--temperature", end)
+    assert res.exit_code == 0, res.stderr
 
 
 def test_invalid_batter_file_exits_3(batcert_cli, tmp_path, repo_root):

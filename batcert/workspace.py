@@ -190,7 +190,7 @@ class Workspace:
 
     def call(self, kind: str, fn: Callable[..., T], *args: Any, rows: int = 0,
              save: Callable[[T], dict[str, Any]] | None = None,
-             load: Callable[[dict[str, Any] | None], T | None] | None = None) -> T:
+             load: Callable[[dict[str, Any]], T | None] | None = None) -> T:
         """``fn(*args)``, or the kept result of the same function on equal arguments.
 
         ``rows``: the number of impacts of a batch; a batch of more than :data:`BATCH_ROWS` is
@@ -221,7 +221,7 @@ class Workspace:
         return value
 
 
-def _loaded(load: Callable[[dict[str, Any] | None], T | None], arrays: dict[str, Any] | None) -> T | None:
+def _loaded(load: Callable[[dict[str, Any]], T | None], arrays: dict[str, Any] | None) -> T | None:
     """``load(arrays)``, None where the arrays do not make a result (a missing array, a wrong
     shape: any error of ``load`` on them is a miss, never a traceback)."""
     if arrays is None:

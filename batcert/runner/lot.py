@@ -98,7 +98,7 @@ def _calibrate(ball_path: str, ball_sha: str, bat: str, bat_sha: str, protocol: 
     def gaps(shifts) -> np.ndarray:
         """The model's value less the measured one at each shift (NaN where the moved law
         leaves its plausible range)."""
-        laws = []
+        laws: list[Any] = []
         for k in shifts:
             try:
                 laws.append(fit.moved(float(k)))

@@ -176,7 +176,8 @@ _VISCOELASTIC = TwoTimeViscoelastic.PARAMETERS  # every viscoelastic law's param
 
 
 def _own(model: str) -> tuple[str, ...]:
-    return _HYSTERESIS if model == "power-law-hysteresis" else LAWS[model].law.PARAMETERS
+    law: Any = LAWS[model].law  # a viscoelastic law's class lists its parameters
+    return _HYSTERESIS if model == "power-law-hysteresis" else tuple(law.PARAMETERS)
 
 
 def _contact_check(values: dict, data, errors: Collector, path: str) -> None:

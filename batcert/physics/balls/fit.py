@@ -38,6 +38,7 @@ import numpy as np
 
 from batcert.physics.balls import footprint
 from batcert.physics.balls.fit_coordinates import SLOPE, bounds, law_of, theta_of
+from batcert.physics.balls.fit_starts import starts
 from batcert.physics.balls.impact1d import body_impact, contact_time_estimate
 from batcert.physics.balls.viscoelastic import TwoTimeViscoelastic, Viscoelastic, ViscoelasticMarch
 
@@ -52,7 +53,8 @@ BOUNDS = {"exponent": (1.0, 3.0), "relaxed_fraction": (0.01, 0.99),
           "fast_share": (0.01, 0.99), "fast_relaxation_time": (1e-6, 0.1)}
 PARAMETERS = Viscoelastic.PARAMETERS  # the one-time law's (the default law of a fit)
 # the laws a ball's tests can be fitted to (each lists its PARAMETERS and their COORDINATES)
-FITTED = {Viscoelastic.name: Viscoelastic, TwoTimeViscoelastic.name: TwoTimeViscoelastic}
+FITTED: dict[str, type[Viscoelastic]] = {Viscoelastic.name: Viscoelastic,
+                                          TwoTimeViscoelastic.name: TwoTimeViscoelastic}
 
 
 class FitError(ValueError):
@@ -159,60 +161,12 @@ def test_values(law, tests: tuple[BallTest, ...], mass: float, radius: float) ->
     return out
 
 
-def _start(tests: tuple[BallTest, ...], mass: float,
-           cls: type[Viscoelastic] = Viscoelastic) -> list[np.ndarray]:
-    """Starting points read off the data: the exponent from how the times fall with speed
-    (an elastic power-law spring's contact time goes as ``v^(-(a-1)/(a+1))``), the stiffness
-    from a time, a force or the compression, a few relaxation times around a fifth of a
-    contact time; for two relaxation times, the slow one near the contact time of slow
-    impacts and the fast one a tenth to a third of a fast impact's."""
-    times = sorted((t.condition, t.value) for t in tests
-                   if t.kind in ("collision_time", "contact_time"))
-    a = 1.8
-    if len(times) >= 2 and times[-1][0] > times[0][0]:
-        slope = -np.log(times[-1][1] / times[0][1]) / np.log(times[-1][0] / times[0][0])
-        a = float(np.clip((1 + slope) / (1 - slope), 1.2, 2.6)) if slope < 0.9 else 2.6
-    k = 6.5e7  # a baseball's order (Nathan 2000's k1)
-    t_scale = 1e-3
-    if times:
-        v, t = times[len(times) // 2]
-        t = t / 0.85 if any(x.kind == "collision_time" for x in tests) else t
-        # contact_time_estimate = 3 u_m / v = t  ->  u_m = t v / 3  ->  k
-        um = t * v / 3.0
-        k = (1 + a) * mass * v**2 / (2.0 * um ** (1 + a))
-        t_scale = t
-    else:
-        comp = [x for x in tests if x.kind == "compression"]
-        forces = [x for x in tests if x.kind == "peak_force"]
-        if comp:
-            k = comp[0].value / (0.5 * comp[0].condition) ** a / 0.4
-        elif forces:
-            v, f = forces[0].condition, forces[0].value
-            um = ((1 + a) * mass * v**2 / 2.0 / f) ** 1.0  # F u_m ~ (1+a) E for a power law
-            k = f / um**a
-    starts = []
-    if cls is TwoTimeViscoelastic:
-        slow = max(t for _, t in times) if times else t_scale
-        fast = min(t for _, t in times) if times else t_scale
-        for fast_frac in (0.02, 0.15):
-            for share in (0.9, 0.5):
-                for r in (0.1, 0.3):
-                    law = TwoTimeViscoelastic(k * (2.0 if r == 0.3 else 3.0), a, r, 0.5 * slow,
-                                              share, fast_frac * fast)
-                    starts.append(theta_of(law))
-        return starts
-    for tau_frac in (0.2, 0.05, 0.6):
-        for r in (0.4, 0.15):
-            law = Viscoelastic(k * (1.6 if r == 0.4 else 2.5), a, r, tau_frac * t_scale)
-            starts.append(theta_of(law))
-    return starts
-
-
 def _solve(tests: tuple[BallTest, ...], mass: float, radius: float, fixed: Fixed = (),
-           cls: type[Viscoelastic] = Viscoelastic):
+           cls: type[Viscoelastic] = Viscoelastic, first: np.ndarray | None = None):
     """The least-squares solution (module notes) over the parameters of ``cls`` not in
     ``fixed``: ``(theta, residuals, jacobian)``, ``theta`` all the coordinates, the Jacobian over
-    the free ones; FitError when no start converges."""
+    the free ones; FitError when no start converges. ``first``: a start to try before those
+    read off the data (a neighbouring fit's coordinates)."""
     from scipy.optimize import least_squares  # lazy: only a fit needs it
 
     value = np.array([t.value for t in tests])
@@ -237,8 +191,8 @@ def _solve(tests: tuple[BallTest, ...], mass: float, radius: float, fixed: Fixed
         return ((r[1:] - r[0]) / 1e-3).T
 
     lower, upper = (b[free] for b in bounds(cls, BOUNDS))
-    best, costs = None, []
-    for start in _start(tests, mass, cls):
+    best, costs = None, []  # type: ignore[var-annotated]
+    for start in ([] if first is None else [first]) + starts(tests, mass, cls):
         start = np.clip(start[free], lower + 1e-6, upper - 1e-6)
         try:
             res = least_squares(fun, start, jac=jac, bounds=(lower, upper), x_scale="jac",
@@ -313,17 +267,7 @@ def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: 
                        "(the fit is singular): add a test of another kind or speed (COR at a "
                        "third speed, a contact or collision time, a peak force, a compression)")
     cov = np.linalg.inv(jtj) * max(1.0, chi2 / dof if dof > 0 else 1.0)
-    at_edge = _at_bounds(fitted)
-    if at_edge:
-        raise FitError(f"the fit puts the viscoelastic ball's {at_edge} at the edge of its "
-                       "plausible range: the tests do not hold it (or are not of one ball)")
-    if np.max(np.abs(r)) > MAX_RESIDUAL:
-        worst, miss, model_value = _blame(tests, mass, radius, r, fixed, cls)
-        raise FitError(f"the viscoelastic law fitted to the other tests misses this one by "
-                       f"{miss:+.1f} standard uncertainties (model "
-                       f"{_show(tests[worst], model_value)} against "
-                       f"{_show(tests[worst], value[worst])}): the tests are not of one ball, or "
-                       "an uncertainty is too small", worst)
+    _refuse_untrusted(tests, mass, radius, r, fixed, cls, fitted, theta)
     # parameter uncertainties, in SI (through the transforms)
     _, free = _split(fixed, cls)
     su = np.zeros(len(cls.PARAMETERS))
@@ -340,8 +284,28 @@ def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: 
                    chi2, dof, uncertainty, direction, tuple(k for k, _ in fixed))
 
 
+def _refuse_untrusted(tests, mass, radius, r, fixed, cls, fitted, theta) -> None:
+    """FitError when a parameter lands on the edge of its plausible range or a test is missed
+    by more than :data:`MAX_RESIDUAL`; a test out of line (which can also push a parameter to
+    its edge: a COR of 0.9 at 58 m/s drives the fast branch's share to 0.01) is named."""
+    at_edge = _at_bounds(fitted)
+    if np.max(np.abs(r)) > MAX_RESIDUAL:
+        worst, miss, model_value = _blame(tests, mass, radius, r, fixed, cls, theta)
+        edge = f"puts the viscoelastic ball's {at_edge} at the edge of its plausible range, and " \
+            if at_edge else ""
+        raise FitError(f"the fit {edge}the law fitted to the other tests misses this one by "
+                       f"{miss:+.1f} standard uncertainties (model "
+                       f"{_show(tests[worst], model_value)} against "
+                       f"{_show(tests[worst], tests[worst].value)}): the tests are not of one "
+                       "ball, or an uncertainty is too small", worst)
+    if at_edge:
+        raise FitError(f"the fit puts the viscoelastic ball's {at_edge} at the edge of its "
+                       "plausible range: the tests do not hold it (or are not of one ball)")
+
+
 def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarray,
-           fixed: Fixed = (), cls: type[Viscoelastic] = Viscoelastic) -> tuple[int, float, float]:
+           fixed: Fixed = (), cls: type[Viscoelastic] = Viscoelastic,
+           near: np.ndarray | None = None) -> tuple[int, float, float]:
     """The test at fault in a refused fit, ``(index, miss, model value)``: the one without
     which the others fit best (the smallest chi-square of the fit to the rest), its miss being
     how far that fit is from it, in its standard uncertainties. Where the rest fit equally well
@@ -361,7 +325,8 @@ def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarra
                 or not kinds & set(STIFFNESS_KINDS)):
             continue
         try:
-            theta, r_rest, jm = _solve(rest, mass, radius, fixed, cls)
+            # from the full fit's coordinates: one start usually serves (a leave-one-out refit)
+            theta, r_rest, jm = _solve(rest, mass, radius, fixed, cls, near)
             cov = np.zeros((n, n))
             free = _split(fixed, cls)[1]
             cov[np.ix_(free, free)] = np.linalg.inv(jm.T @ jm)

@@ -7,12 +7,15 @@ cannot leave a parameter's domain, and steps of equal size are changes of equal 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 
-_TO = {"log": np.log, "logit": lambda p: np.log(p / (1 - p)), "": lambda x: x}
-_FROM = {"log": np.exp, "logit": lambda y: 1.0 / (1.0 + np.exp(-y)), "": lambda y: y}
+_TO: dict[str, Callable[[Any], Any]] = {"log": np.log, "logit": lambda p: np.log(p / (1 - p)), "": lambda x: x}
+_FROM: dict[str, Callable[[Any], Any]] = {"log": np.exp, "logit": lambda y: 1.0 / (1.0 + np.exp(-y)), "": lambda y: y}
 # d(parameter) / d(coordinate), at the parameter's value
-SLOPE = {"log": lambda x: x, "logit": lambda p: p * (1 - p), "": lambda x: 1.0}
+SLOPE: dict[str, Callable[[Any], Any]] = {"log": lambda x: x, "logit": lambda p: p * (1 - p), "": lambda x: 1.0}
 
 
 def theta_of(law) -> np.ndarray:

@@ -517,13 +517,16 @@ def test_agrees_with_reference_integration_hollow(support, loss_factor, ball_los
     # bat swung at game speeds with every mode damped (loss factor 0.02). Within 0.1 % of the
     # exit speed (brief); measured < 3e-4 of it (the largest in the taper, where the exit speed
     # is lowest); contact times within 1 %.
+    # Shell modes to 10 kHz in both (the engine's default before issue 39; the agreement does
+    # not depend on the cut, and at 12 kHz solve_ivp takes 2-3 minutes a case)
     bat = hollow_bat(2.0e-3, loss_factor=loss_factor)
     speeds = CANNON if support == "pinned" else GAME
     z = np.concatenate([[0.40, 0.45, 0.50, 0.54], np.linspace(0.56, 0.85, 12)])
-    out = solve(bat, z, speeds, support, ball_loss=ball_loss)
+    out = solve(bat, z, speeds, support, ball_loss=ball_loss, shell_max_frequency=10_000.0)
     modes = cached_modes(bat, support, PIVOT, DEFAULT_MODES)
     ref = np.array([reference_impact(bat, BALL, PIVOT, support, zi, *speeds, modes, rtol=1e-9,
-                                     ball_loss=ball_loss) for zi in z])
+                                     ball_loss=ball_loss, shell_max_frequency=10_000.0)
+                    for zi in z])
     np.testing.assert_allclose(out.exit_speed, ref[:, 0], rtol=1e-3)
     np.testing.assert_allclose(out.diagnostics["contact_time"], ref[:, 1], rtol=1e-2)
 

@@ -291,9 +291,9 @@ def _refuse_untrusted(tests, mass, radius, r, fixed, cls, fitted, theta) -> None
     at_edge = _at_bounds(fitted)
     if np.max(np.abs(r)) > MAX_RESIDUAL:
         worst, miss, model_value = _blame(tests, mass, radius, r, fixed, cls, theta)
-        edge = f"puts the viscoelastic ball's {at_edge} at the edge of its plausible range, and " \
-            if at_edge else ""
-        raise FitError(f"the fit {edge}the law fitted to the other tests misses this one by "
+        edge = (f"the fit puts the viscoelastic ball's {at_edge} at the edge of its plausible "
+                "range, and the law" if at_edge else "the viscoelastic law")
+        raise FitError(f"{edge} fitted to the other tests misses this one by "
                        f"{miss:+.1f} standard uncertainties (model "
                        f"{_show(tests[worst], model_value)} against "
                        f"{_show(tests[worst], tests[worst].value)}): the tests are not of one "

@@ -9,13 +9,11 @@ shells, :mod:`batcert.physics.barrel`; ``modes``: bats' beam modes; ``ball-fits`
 balls fitted to their tests; ``ball-walls``: balls' rigid-wall tables,
 :mod:`batcert.physics.balls`; ``compressions``: barrels' compression stiffness).
 
-What the cache may touch. The top folder is batcert's own only when it holds batcert's
-``CACHEDIR.TAG`` (the cache-directory tag that backup tools honour), written when batcert makes
-the folder, or adopts one that is empty or holds nothing but batcert's entries. A folder that
-holds anything else (``BATCERT_CACHE_DIR`` set to a project folder), or a kind's folder that is a
-symbolic link, is not used at all: caching is off for it, with one :class:`CacheWarning`. Within
-its folders the cache reads and deletes only files with its own names (``<32 hex>.arrays`` and its
-own temporary files), never following a link.
+What the cache may touch. The top folder is batcert's only when it holds batcert's
+``CACHEDIR.TAG`` (the tag backup tools honour), written when batcert makes the folder or adopts
+an empty one or one of only its entries. A folder holding anything else, or a kind's folder
+that is a link, is not used: caching is off for it, with one :class:`CacheWarning`. In its
+folders the cache reads and deletes only its own names, never following a link.
 
 What it trusts. Every entry carries a SHA-256 checksum of its header and arrays; a mismatch (a
 bad disk block, an edited file) is a miss, said once (:class:`CacheWarning`), recomputed and
@@ -87,6 +85,7 @@ def cache_root() -> Path:
 def _own(name: str) -> bool:
     return any(p.fullmatch(name) for p in OWN_NAMES)
 
+
 def _only_ours(root: Path) -> bool:
     """Whether ``root`` holds nothing but folders of batcert's own entries (no link followed)."""
     try:
@@ -127,6 +126,7 @@ def _claim(root: Path) -> bool:
 
 
 _CLAIMED: set[str] = set()  # top folders found or made batcert's in this process
+
 
 def cache_dir(kind: str) -> Path | None:
     """The folder of one kind of cache entry (made if missing), or None where that cannot be or

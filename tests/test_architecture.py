@@ -33,9 +33,10 @@ ALLOWED = {
     # impact rules) and from specs/kinds.py (claim checks, league rule kinds)
     "specs": {"units", "errors", "conventions", "physics", "methods"},
     "model": {"units", "errors", "conventions", "physics", "specs", "results"},
-    # (and the workspace: a ball lot's calibration on its reference bat is kept, runner/lot.py)
-    "runner": {"units", "errors", "conventions", "physics", "methods", "engines", "specs",
-               "model", "results", "version", "workspace"},
+    # (and the workspace and a root finder: a ball lot's calibration on its reference bat,
+    # runner/lot.py, is kept, and its fallback search is Brent's, as the lab's barrel's is)
+    "runner": {"numerics", "units", "errors", "conventions", "physics", "methods", "engines",
+               "specs", "model", "results", "version", "workspace"},
     "reports": {"units", "errors", "results", "methods", "cache"},
     "analysis": {"units", "specs", "model", "results", "reports", "version"},
     # (and the workspace and cache: a worker process keeps its results where its parent does)

@@ -10,15 +10,16 @@ of the moved tests is rough at about 1e-4 in a bat's metric); ``k`` is found whe
 metric for the reference bat under that protocol, on the flexible engine with its default
 settings, equals the measured value. The search: the secant method from ``k = 0`` and ``-1``;
 where it fails (far from the tests the linearisation need not keep the metric monotonic in
-``k``), a grid over :data:`SHIFT_BOUNDS` in one batch and regula falsi (Illinois) in the sign
-change nearest ``k = 0``. Every evaluation is a full protocol run with its location search.
+``k``), a grid over :data:`SHIFT_BOUNDS` in one batch and Brent's method
+(:func:`batcert.numerics.brent_root`, as the lab's barrel calibration does) in the sign change
+nearest ``k = 0``. Every evaluation is a full protocol run with its location search.
 
 The calibration is an INPUT, not a result: it makes the reference bat come out at its measured
 value by construction, so that bat (and bats like it) are no longer a validation of the model.
 It is made once per ball and kept (workspace kind ``ball-lot``, also on disk); every command
-that loads the ball uses the calibrated lot, whichever engine
-it then runs (the lot is a property of the balls, not of an engine). The standard uncertainty
-of ``k`` is the measurement's divided by the slope of the metric in ``k`` (GUM 5.1.2).
+that loads the ball uses the calibrated lot, whichever engine it then runs (the lot is a
+property of the balls, not of an engine). The standard uncertainty of ``k`` is the
+measurement's divided by the slope of the metric in ``k`` (GUM 5.1.2).
 """
 
 from __future__ import annotations
@@ -33,6 +34,7 @@ from batcert import workspace
 from batcert.engines import get_engine
 from batcert.errors import InputError, Problem
 from batcert.model.build import build_bat
+from batcert.numerics import brent_root
 from batcert.runner.runner import run_protocols
 from batcert.specs.ball import BallSpec
 from batcert.specs.bat import load_bat
@@ -141,8 +143,9 @@ def _secant(gaps) -> tuple[float, float, float] | None:
 
 
 def _bracketed(gaps, found, value: float) -> LotCalibration:
-    """A grid over the bounds in one batch, then regula falsi (Illinois) in the sign change
-    nearest 0; NaN with the nearest value reached where the grid has no sign change."""
+    """A grid over the bounds in one batch, then Brent's method in the sign change nearest 0
+    (the slope there by central differences); NaN with the nearest value reached where the
+    grid has no sign change."""
     grid = np.linspace(*SHIFT_BOUNDS, 17)
     g = gaps(grid)
     change = [i for i in range(grid.size - 1) if np.isfinite(g[i]) and np.isfinite(g[i + 1])
@@ -151,16 +154,10 @@ def _bracketed(gaps, found, value: float) -> LotCalibration:
         nearest = float(g[int(np.nanargmin(np.abs(g)))]) if np.any(np.isfinite(g)) else np.nan
         return LotCalibration(float("nan"), float("nan"), value + nearest, float("nan"))
     i = min(change, key=lambda j: abs(grid[j] + grid[j + 1]))
-    a, ga, b, gb = float(grid[i]), float(g[i]), float(grid[i + 1]), float(g[i + 1])
-    for _ in range(3 * MAX_STEPS):
-        k = b - gb * (b - a) / (gb - ga)
-        (gk,) = gaps([k])
-        if abs(gk) <= TOLERANCE:
-            return found(float(k), (gk - gb) / (k - b) if k != b else (gb - ga) / (b - a),
-                         float(gk))
-        if gk * gb < 0:
-            a, ga = b, gb
-        else:
-            ga = ga / 2  # Illinois: halve the end that stays
-        b, gb = k, float(gk)
-    return LotCalibration(float("nan"), float("nan"), value + gb, float("nan"))
+
+    def gap(k: float) -> float:
+        return float(gaps([k])[0])
+
+    k = brent_root(gap, float(grid[i]), float(grid[i + 1]), xtol=1e-5).x
+    h = 1e-3  # [standard uncertainties]
+    return found(k, (gap(k + h) - gap(k - h)) / (2 * h), gap(k))

@@ -181,9 +181,9 @@ def _own(model: str) -> tuple[str, ...]:
 
 
 def _contact_check(values: dict, data, errors: Collector, path: str) -> None:
-    """Each law's own parameters: Nathan's needs ``k1`` and ``alpha``; the viscoelastic law
-    takes any of its four parameters (those not given are fitted to the tests, the given ones
-    held: a ball known only by its marks)."""
+    """Each law's own parameters: Nathan's needs ``k1`` and ``alpha``; a viscoelastic law
+    takes any of its parameters (four, or six with two relaxation times; those not given are
+    fitted to the tests, the given ones held: a ball known only by its marks)."""
     model = values["model"]
     own = _own(model)
     for name in _HYSTERESIS + _VISCOELASTIC:
@@ -218,6 +218,7 @@ CONTACT_SCHEMA = Schema("contact law", (
     Field("fast_relaxation_time", quantity("time", positive=True), "viscoelastic-2: the fast "
           "branch's relaxation time tau_f."),
 ), checks=(_contact_check,))
+
 
 def _cor_kind() -> Kind:
     def parse(value: Any, errors: Collector, path: str):

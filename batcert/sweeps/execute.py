@@ -215,7 +215,7 @@ def _on_processes(chunks: list[Chunk], on_done, workers: int) -> None:
                                mp_context=multiprocessing.get_context("spawn"),
                                initializer=_start_worker, initargs=(os.getpid(), cached))
     try:
-        futures: dict[Future, Chunk] = {pool.submit(evaluate_chunk, c): c for c in chunks}
+        futures: dict[Future, Chunk] = {pool.submit(evaluate_in_worker, c): c for c in chunks}
         for fut in as_completed(futures):
             on_done(futures[fut], fut.result())
     except BaseException:

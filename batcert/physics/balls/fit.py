@@ -191,7 +191,8 @@ def _solve(tests: tuple[BallTest, ...], mass: float, radius: float, fixed: Fixed
         return ((r[1:] - r[0]) / 1e-3).T
 
     lower, upper = (b[free] for b in bounds(cls, BOUNDS))
-    best, costs = None, []  # type: ignore[var-annotated]
+    best = None
+    costs: list[float] = []
     for start in ([] if first is None else [first]) + starts(tests, mass, cls):
         start = np.clip(start[free], lower + 1e-6, upper - 1e-6)
         try:
@@ -317,10 +318,10 @@ def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarra
     k = int(np.argmax(np.abs(r)))
     best = (k, float(r[k]), tests[k].value + float(r[k]) * tests[k].uncertainty)
     score = np.inf
+    n = len(cls.PARAMETERS)
     for i, test in enumerate(tests):
         rest = tests[:i] + tests[i + 1:]
         kinds = {t.kind for t in rest}
-        n = len(cls.PARAMETERS)
         if (len(rest) < n - len(fixed) or not kinds & set(COR_KINDS)
                 or not kinds & set(STIFFNESS_KINDS)):
             continue

@@ -15,11 +15,11 @@ from batcert.physics.balls.viscoelastic import TwoTimeViscoelastic, Viscoelastic
 def starts(tests: tuple[Any, ...], mass: float,
            cls: type[Viscoelastic] = Viscoelastic) -> list[np.ndarray]:
     """Starting points for a fit to ``tests`` (``fit.BallTest``) read off the data: the exponent
-    from how the times fall with speed
-    (an elastic power-law spring's contact time goes as ``v^(-(a-1)/(a+1))``), the stiffness
-    from a time, a force or the compression, a few relaxation times around a fifth of a
-    contact time; for two relaxation times, the slow one near the contact time of slow
-    impacts and the fast one a tenth to a third of a fast impact's."""
+    from how the times fall with speed (an elastic power-law spring's contact time goes as
+    ``v^(-(a-1)/(a+1))``), the stiffness from a time, a force or the compression, a few
+    relaxation times around a fifth of a contact time; for two relaxation times, the slow one
+    near the contact time of slow impacts and the fast one a tenth to a third of a fast
+    impact's."""
     times = sorted((t.condition, t.value) for t in tests
                    if t.kind in ("collision_time", "contact_time"))
     a = 1.8

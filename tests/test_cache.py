@@ -136,8 +136,9 @@ def test_an_entry_that_still_parses_but_was_changed_is_a_miss(where, edit):
 def test_a_stored_entry_that_does_not_make_a_result_is_a_miss_never_a_traceback():
     """The workspace's loader of a kind raising (a missing array: KeyError) or refusing an
     intact entry is a miss: the store is told (it warns and drops it), the value recomputed."""
+    from dict_store import DictStore
+
     from batcert import workspace
-    from tests.dict_store import DictStore
 
     store = DictStore()
     ws = workspace.Workspace()

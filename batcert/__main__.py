@@ -1,5 +1,5 @@
 """``python -m batcert``: the same command line as the ``batcert`` script."""
 
-from batcert.cli import entry
+from batcert.launch import entry
 
 entry()

@@ -89,3 +89,50 @@ def test_status_as_the_interpreter_gives_it(monkeypatch, capsys, code, status, s
         cli._exit_now(code)
     assert exited.value.args == (status,)
     assert capsys.readouterr().err == stderr
+
+
+def _launch(tmp_path, argv: list[str], before: str) -> subprocess.CompletedProcess:
+    """``batcert ARGV`` through the installed command's first lines (:func:`batcert.launch.entry`)
+    in a fresh process, after the Python lines ``before``."""
+    script = tmp_path / "launch.py"
+    script.write_text(textwrap.dedent(before) + "\nimport sys\nimport batcert.launch as launch\n"
+                      "launch._load_cli = globals().get('load_cli', launch._load_cli)\n"
+                      f"sys.argv = ['batcert', *{argv!r}]\nlaunch.entry()\n")
+    return subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                          timeout=300, cwd=tmp_path)
+
+
+def test_ctrl_c_while_the_command_line_loads_is_one_line_and_130(tmp_path):
+    # a Ctrl-C in the first tenth of a second, while click, rich and the commands are imported:
+    # it was a Python traceback (KeyboardInterrupt in an import)
+    proc = _launch(tmp_path, ["--version"], before="""
+        import os, signal, time
+        def load_cli():
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(5)
+            raise AssertionError("the interrupt did not end the process")
+        """)
+    assert proc.returncode == 130
+    assert proc.stderr == "error: interrupted\n" and proc.stdout == ""
+
+
+def test_ctrl_c_while_arguments_are_parsed_is_130_not_aborted(tmp_path):
+    # an interrupt outside a command's guard (here while click parses the arguments): click
+    # printed "Aborted!" and exited 1, the code for "a verdict fails"
+    proc = _launch(tmp_path, ["protocols"], before="""
+        import click
+        def interrupted(self, ctx, args):
+            raise KeyboardInterrupt
+        click.Group.parse_args = interrupted
+        """)
+    assert proc.returncode == 130, proc.stderr
+    assert "Aborted" not in proc.stderr and "Traceback" not in proc.stderr
+    assert [line for line in proc.stderr.splitlines() if line.strip()] == ["error: interrupted"]
+
+
+def test_the_installed_command_starts_with_the_interrupt_guard():
+    # pyproject's script is batcert.launch:entry, so the guard is in place before anything loads
+    import tomllib
+    from pathlib import Path
+    project = tomllib.loads((Path(__file__).parents[2] / "pyproject.toml").read_text())
+    assert project["project"]["scripts"]["batcert"] == "batcert.launch:entry"

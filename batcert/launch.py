@@ -1,0 +1,40 @@
+"""The ``batcert`` command's first lines: Ctrl-C means exit 130 and one line, from the first
+instant.
+
+Loading the command line (click, rich, the commands) takes a tenth of a second or more; a Ctrl-C
+in that window would print a Python traceback, and one while click parses the arguments would
+print click's "Aborted!" with exit 1, which every script reads as "a verdict fails". Until the
+command line is loaded, an interrupt ends the process at once (nothing has been written yet);
+from then on it is a KeyboardInterrupt, which the commands clean up after
+(:func:`batcert.cli.base.entry` maps it to exit 130).
+
+This module imports nothing of batcert at load time, so that ``import batcert.launch`` is as
+light as ``import batcert``.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+
+INTERRUPTED = 130
+MESSAGE = b"error: interrupted\n"  # as batcert.console.error("interrupted") writes it
+
+
+def _interrupted_while_loading(signum, frame) -> None:
+    os.write(2, MESSAGE)
+    os._exit(INTERRUPTED)
+
+
+def _load_cli():
+    """The command line's entry function (the costly import)."""
+    from batcert.cli.base import entry
+    return entry
+
+
+def entry() -> None:
+    """The installed ``batcert`` command, ``python -m batcert`` and ``python -m batcert.cli``."""
+    previous = signal.signal(signal.SIGINT, _interrupted_while_loading)
+    run = _load_cli()
+    signal.signal(signal.SIGINT, signal.default_int_handler if previous is None else previous)
+    run()

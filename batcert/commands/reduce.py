@@ -11,7 +11,14 @@ from batcert.commands.inputs import ProtocolInputs, load_protocol_any
 from batcert.lab.certify import DECISION_RULES, MC_DRAWS, Certified, certify, guard_band
 from batcert.lab.session import LabSession, load_lab_session
 from batcert.model.break_in import breaks_in
-from batcert.results.lab import LabHit, LabLocation, LabResult
+from batcert.results.lab import (
+    CERTIFICATE_FIELDS,
+    LabHit,
+    LabLocation,
+    LabResult,
+    certificate_values,
+    missing_certificate_fields,
+)
 from batcert.results.run import BreakInResult
 from batcert.results.serialise import utc_now
 from batcert.runner.barrel_tests import measured_history
@@ -127,12 +134,39 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
         conformance_probability=c.conformance, margin=margin, verdict=verdict,
         moi_pivot=session.moi_pivot, moi_source=session.moi_source,
         ball_mass=session.ball.model.mass, pivot=spec.pivot, scan=_scan(session, c),
-        hits=_hits(session, red, c), warnings=c.warnings + barrel_warnings,
+        hits=_hits(session, red, c),
+        warnings=c.warnings + barrel_warnings + _record_warnings(session, bat_spec, p),
         inputs=_inputs(session, p), batcert_version=__version__, created=utc_now(),
-        lab={k: v for k, v in (spec.lab or {}).items() if v is not None},
+        lab=_lab(spec), protocol_reference=p.reference, protocol_version=p.version,
         barrel_fits=barrel_fits,
         model=_model(session, p, pin.ball, engine, location_from_tip, c.value),
         break_in=break_in)
+
+
+def _lab(spec) -> dict:
+    """The session's ``lab:`` block with every certificate field present (None: not given)."""
+    given = {k: v for k, v in (spec.lab or {}).items() if v is not None}
+    return {**{f.key: None for f in CERTIFICATE_FIELDS}, **given}
+
+
+def _record_warnings(session: LabSession, bat_spec, p: ProtocolSpec) -> list[str]:
+    """What the certificate's record lacks or contradicts: the ISO/IEC 17025 fields the session
+    does not give, an MOI that is the model's, a serial the bat file disagrees with."""
+    out = []
+    missing = missing_certificate_fields(certificate_values(_lab(session.spec), p.reference,
+                                                            p.version))
+    if missing:
+        out.append(f"the session's `lab:` block lacks {len(missing)} of the certificate's "
+                   f"ISO/IEC 17025 7.8 fields ({', '.join(missing)}): shown as MISSING")
+    if session.moi_source == "model":
+        out.append("the bat's MOI about the pivot is the model's: the bat file gives no "
+                   "measured MOI (`measured.moi`), which a certified value rests on")
+    serial = (session.spec.lab or {}).get("bat_serial")
+    filed = (bat_spec.identification or {}).get("serial")
+    if serial and filed and str(serial).strip() != str(filed).strip():
+        out.append(f"the session's bat serial {serial!r} is not the bat file's "
+                   f"({filed!r}): the certificate names the session's")
+    return out
 
 
 def _session(session_path: str, pin: ProtocolInputs, bat: str | None) -> LabSession:

@@ -12,7 +12,7 @@ from batcert.reports.compare_view import VERDICT_BADGES, badge
 from batcert.reports.figure import LineFigure
 from batcert.reports.svg import Point, Series, VLine
 from batcert.reports.table import Badge, Table
-from batcert.results.lab import LabResult
+from batcert.results.lab import CERTIFICATE_FIELDS, LabResult, certificate_values
 
 INCH = 0.0254
 
@@ -65,7 +65,9 @@ def lab_view(result: LabResult, charts: bool = True) -> dict[str, Any]:
     figs = lab_figures(result)
     return {"result": result, "title": f"Lab certificate: {result.bat}, {result.protocol}",
             "page_title": f"Lab certificate: {result.bat} \u2014 batcert", "badge": verdict,
-            "sentence": _sentence(result, word), "facts": _lab_facts(result) + _facts(result),
+            "sentence": _sentence(result, word), "record": certificate_record(result),
+            "signatures": result.lab.get("signatures") or [],
+            "facts": _facts(result),
             "budget": _budget(result), "scan": _scan(result, word), "hits": _hits(result),
             "warnings": result.warnings, "inputs": result.inputs,
             "figures": [{"svg": Markup(svg_of(f)) if charts else "", "caption": f.caption,
@@ -90,16 +92,33 @@ def _sentence(result: LabResult, word: str) -> str:
                if result.verdict else "") + ".")
 
 
-LAB_WORDS = {"laboratory": "Laboratory", "accreditation": "Accreditation",
-             "certificate_number": "Certificate number", "customer": "Customer",
-             "bat_serial": "Bat serial number", "operator": "Operator",
-             "test_date": "Test date", "issue_date": "Issue date", "signatures": "Approved by"}
+MISSING = "MISSING"  # a certificate field the session does not give: shown, never left out
 
 
-def _lab_facts(result: LabResult) -> list[tuple[str, str]]:
-    """The session's ``lab`` block, in the certificate's words and order."""
-    return [(word, "; ".join(result.lab[k]) if isinstance(result.lab[k], list) else
-             str(result.lab[k])) for k, word in LAB_WORDS.items() if k in result.lab]
+def certificate_record(result: LabResult) -> Table:
+    """The certificate's record (ISO/IEC 17025:2017, 7.8) from the session's ``lab:`` block,
+    every field in :data:`~batcert.results.lab.CERTIFICATE_FIELDS` order, MISSING where not
+    given (:func:`~batcert.results.lab.certificate_values`: the method defaults to the
+    protocol file's reference and version, the place to the laboratory's address)."""
+    values = certificate_values(result.lab, result.protocol_reference, result.protocol_version)
+    rows = [[f.word, _record_value(values[f.key], f.parts), f.clause] for f in CERTIFICATE_FIELDS]
+    return Table(["item", "value", "ISO/IEC 17025"], rows, [False, False, False])
+
+
+def _record_value(value: Any, parts: tuple[tuple[str, str], ...]) -> str:
+    if value in (None, "", []):
+        return MISSING
+    if isinstance(value, list) and parts:  # equipment: one entry per instrument
+        return "; ".join(f"{item.get('name')} (" + _parts(item, parts) + ")" for item in value)
+    if isinstance(value, list):
+        return "; ".join(map(str, value))
+    if parts:
+        return _parts(value, parts)
+    return str(value)
+
+
+def _parts(item: dict, parts: tuple[tuple[str, str], ...]) -> str:
+    return ", ".join(f"{word} {item.get(k) or MISSING}" for k, word in parts)
 
 
 def _facts(result: LabResult) -> list[tuple[str, str]]:

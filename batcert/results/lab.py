@@ -11,6 +11,75 @@ from batcert.results.run import BreakInResult
 from batcert.results.serialise import Serialisable
 
 
+@dataclass(frozen=True)
+class CertificateField:
+    """One thing a certificate must show (ISO/IEC 17025:2017, 7.8), from the session's ``lab:``
+    block: its key there, the certificate's word for it, the clause that asks for it and, for a
+    block of several values, each part's key and word."""
+
+    key: str
+    word: str
+    clause: str
+    parts: tuple[tuple[str, str], ...] = ()
+
+
+# What a certificate shows of the session's ``lab:`` block, in the certificate's order. A field
+# the session does not give is shown as MISSING, never left out, and named in a warning.
+CERTIFICATE_FIELDS = (
+    CertificateField("certificate_number", "Certificate number", "7.8.2.1 d"),
+    CertificateField("laboratory", "Laboratory", "7.8.2.1 b"),
+    CertificateField("location", "Where tested", "7.8.2.1 c"),
+    CertificateField("accreditation", "Accreditation", "7.8.1.1"),
+    CertificateField("customer", "Customer", "7.8.2.1 e"),
+    CertificateField("standard", "Method (standard, version)", "7.8.2.1 f"),
+    CertificateField("deviations", "Deviations from the method", "7.8.2.1 n"),
+    CertificateField("bat_serial", "Bat serial number", "7.8.2.1 g"),
+    CertificateField("item_condition", "Bat condition on receipt", "7.8.2.1 g"),
+    CertificateField("receipt_date", "Date received", "7.8.2.1 h"),
+    CertificateField("test_date", "Date tested", "7.8.2.1 i"),
+    CertificateField("issue_date", "Date issued", "7.8.2.1 j"),
+    CertificateField("operator", "Operator", "7.8.1.2"),
+    CertificateField("environment", "Environment during the test", "7.8.3.1 a",
+                     (("temperature", "temperature"), ("humidity", "humidity"))),
+    CertificateField("ball_lot", "Ball lot and conditioning", "7.8.3.1 a",
+                     (("lot", "lot"), ("temperature", "temperature"), ("humidity", "humidity"),
+                      ("conditioning", "conditioned for"), ("age", "age"))),
+    CertificateField("equipment", "Equipment and calibration", "7.8.3.1 e",
+                     (("identifier", "identifier"), ("calibrated", "calibrated"),
+                      ("calibration_due", "due"))),
+    CertificateField("signatures", "Approved by", "7.8.2.1 o"),
+)
+
+
+def certificate_values(lab: dict[str, Any], protocol_reference: str | None = None,
+                       protocol_version: str | None = None) -> dict[str, Any]:
+    """Each certificate field's value from a session's ``lab:`` block (None: not given), with
+    the two that have a stated fallback: the method is the protocol file's reference and
+    version, the place the laboratory's address."""
+    values = {f.key: lab.get(f.key) for f in CERTIFICATE_FIELDS}
+    if not values["standard"] and protocol_reference:
+        values["standard"] = (f"{protocol_reference}, protocol version "
+                              f"{protocol_version or 'not given'} (the protocol file's)")
+    if not values["location"] and values["laboratory"]:
+        values["location"] = "at the laboratory's address"
+    return values
+
+
+def missing_certificate_fields(values: dict[str, Any]) -> list[str]:
+    """The certificate fields (and parts, ``ball_lot.age``) without a value
+    (:func:`certificate_values`)."""
+    out = []
+    for f in CERTIFICATE_FIELDS:
+        value = values.get(f.key)
+        if value in (None, "", []):
+            out.append(f.key)
+        elif f.parts:
+            items = value if isinstance(value, list) else [value]
+            out += list(dict.fromkeys(f"{f.key}.{k}" for item in items for k, _ in f.parts
+                                      if item.get(k) in (None, "")))
+    return out
+
+
 @dataclass
 class LabHit:
     hit: float  # the hit's number as written
@@ -82,7 +151,10 @@ class LabResult(Serialisable):
     inputs: list[dict[str, str]]
     batcert_version: str
     created: str
-    lab: dict[str, Any] = field(default_factory=dict)  # the session's lab: block
+    # the session's lab: block, every certificate field present (None: not given)
+    lab: dict[str, Any] = field(default_factory=dict)
+    protocol_reference: str | None = None  # the protocol file's reference and version
+    protocol_version: str | None = None
     # hollow bats: every barrel stiffness scale at which the model meets the measurement at the
     # certified location (scale, u_scale, hoop_frequency [Hz], u_hoop_frequency [Hz], slope)
     barrel_fits: list[dict[str, float]] = field(default_factory=list)

@@ -38,17 +38,51 @@ UNCERTAINTY_SCHEMA = Schema("uncertainties", (
           "mass.", default=0.0),
 ))
 
+ENVIRONMENT_SCHEMA = Schema("test environment", (
+    Field("temperature", text(), "Air temperature during the hits, as measured (e.g. `21.5 C`)."),
+    Field("humidity", text(), "Relative humidity during the hits, as measured (e.g. `48 %`)."),
+))
+
+BALL_LOT_SCHEMA = Schema("ball lot", (
+    Field("lot", text(), "The balls' lot identifier (the maker's lot number)."),
+    Field("temperature", text(), "Temperature the balls were conditioned at (e.g. `72 F`)."),
+    Field("humidity", text(), "Relative humidity the balls were conditioned at (e.g. `50 %`)."),
+    Field("conditioning", text(), "How long the balls were conditioned (e.g. `14 days`)."),
+    Field("age", text(), "The balls' age or manufacture date."),
+))
+
+EQUIPMENT_SCHEMA = Schema("equipment", (
+    Field("name", text(), "What it is (e.g. `ball cannon`, `light gates`, `MOI pendulum`).",
+          required=True),
+    Field("identifier", text(), "Its serial or asset number.", required=True),
+    Field("calibrated", text(), "Date of its last calibration."),
+    Field("calibration_due", text(), "When that calibration expires."),
+))
+
 LAB_SCHEMA = Schema("laboratory", (
     Field("laboratory", text(), "The testing laboratory's name and address."),
+    Field("location", text(), "Where the hits were measured, if not at that address."),
     Field("accreditation", text(), "Accreditation body and number (e.g. ISO/IEC 17025)."),
     Field("operator", text(), "Who ran the test."),
-    Field("customer", text(), "For whom."),
+    Field("customer", text(), "For whom: name and contact."),
+    Field("standard", text(), "The test standard and its version as the lab applies it (default: "
+          "the protocol file's reference and version)."),
+    Field("deviations", text(), "Additions to, deviations from or exclusions from the method "
+          "(`none` if none)."),
     Field("bat_serial", text(), "The tested bat's serial number."),
+    Field("item_condition", text(), "The bat's condition on receipt."),
+    Field("receipt_date", text(), "When the bat was received."),
     Field("test_date", text(), "When the hits were measured."),
     Field("issue_date", text(), "When the certificate is issued."),
     Field("certificate_number", text(), "The certificate's number."),
+    Field("environment", section(ENVIRONMENT_SCHEMA), "The air during the hits."),
+    Field("ball_lot", section(BALL_LOT_SCHEMA), "The ball lot and its conditioning."),
+    Field("equipment", list_of(section(EQUIPMENT_SCHEMA), min_items=1,
+                               describe="list of instruments with identifiers and calibration "
+                               "dates"),
+          "The instruments used (ball cannon, light gates, MOI pendulum, scale...)."),
     Field("signatures", list_of(text(), min_items=1, describe="list of names and roles"),
-          "Who approves the certificate (name, role)."),
+          "Who approves the certificate (name, role): a signature line each."),
 ))
 
 def _check_readings(v: dict, data: Located, errors: Collector, path: str) -> None:

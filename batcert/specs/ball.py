@@ -21,7 +21,7 @@ from typing import Any
 from batcert.errors import Collector, InputError, Problem
 from batcert.physics.ball import BallModel
 from batcert.physics.balls import LAWS, ContactLaw, PowerLawHysteresis, TwoTimeViscoelastic, Viscoelastic
-from batcert.physics.balls.fit import BallFit, BallTest, FitError
+from batcert.physics.balls.fit import BallFit, BallTest, FitError, check_given
 from batcert.physics.balls.fit_kept import cached_fit
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked
 from batcert.specs.schema import (
@@ -321,6 +321,7 @@ def load_ball(path: str | Path) -> BallSpec:
             c["k1"], c["alpha"], tuple(p.condition for p in cor), tuple(p.value for p in cor))
     elif all(c[n] is not None for n in _own(c["model"])):
         law = LAWS[c["model"]].law(*(c[n] for n in _own(c["model"])))
+        _judge_given(path, data, tests, float(mass), radius, law)
     else:
         held = tuple((n, float(c[n])) for n in _own(c["model"]) if c[n] is not None)
         fit = _fitted(path, data, tests, float(mass), radius, held, c["model"])
@@ -351,6 +352,18 @@ def _reference(path, data, r: dict, fit: BallFit | None) -> ReferenceBat:
         raise InputError(problems)
     return ReferenceBat(str(found["bat"]), str(found["protocol"]), float(r["value"]),
                         float(r["value"].u), r["source"] or "", node.key_pos["value"][0])
+
+
+def _judge_given(path, data, tests, mass: float, radius: float, law) -> None:
+    """A law given whole is checked against the file's own tests (:func:`check_given`): one
+    it misses by many standard uncertainties is an input error at that test."""
+    if not tests:
+        return
+    try:
+        check_given(law, ball_tests(tests), mass, radius)
+    except FitError as exc:
+        key, p = tests[exc.test]
+        raise InputError([Problem(str(path), p.line, key, str(exc))]) from None
 
 
 def _fitted(path, data, tests, mass: float, radius: float, held=(),

@@ -359,6 +359,26 @@ def _at_bounds(law: Viscoelastic) -> str | None:
     return None
 
 
+def check_given(law: Viscoelastic, tests: tuple[BallTest, ...], mass: float,
+                radius: float) -> None:
+    """FitError naming the test that a law with every parameter given (no fit) misses by more
+    than :data:`MAX_RESIDUAL` of its standard uncertainty (tests without one are not judged):
+    a ball whose parameters contradict its own tests must not run without a word."""
+    judged = [i for i, t in enumerate(tests) if t.uncertainty > 0]
+    if not judged:
+        return
+    values = predict([law], tuple(tests[i] for i in judged), mass, radius)[0]
+    miss = [(values[j] - tests[i].value) / tests[i].uncertainty for j, i in enumerate(judged)]
+    worst = int(np.argmax(np.abs(miss)))
+    if abs(miss[worst]) > MAX_RESIDUAL:
+        test = tests[judged[worst]]
+        raise FitError(f"the {type(law).name} law with the parameters given misses this test "
+                       f"by {miss[worst]:+.1f} standard uncertainties (model "
+                       f"{_show(test, values[worst])} against {_show(test, test.value)}): "
+                       "the parameters are not of this ball, or leave one out to fit it",
+                       judged[worst])
+
+
 def _show(test: BallTest, x: float) -> str:
     unit = {"cor": "", "cylinder_cor": "", "peak_force": " N", "collision_time": " s",
             "contact_time": " s", "compression": " N"}[test.kind]

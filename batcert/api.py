@@ -5,9 +5,12 @@ design and reduce lab measurements, from Python. The command line is a layer ove
 Every function takes a shipped name (``"ash-34"``, ``"ncaa-bbcor"``) or a path where an input is
 meant, or an object :func:`load_bat` / :func:`load_protocol` returned, and gives a typed result
 (``RunResult``, ``ComparisonResult``, ...) whose ``to_dict()`` is the document of
-docs/results-json.md. Bad input raises :class:`batcert.errors.InputError` (every problem, with
-its file and line), an unknown name :class:`batcert.specs.resolve.NotFound`, an impossible
-request :class:`batcert.errors.UsageProblem`.
+docs/results-json.md. Quantities may be strings with their units (``pitch_speed="85 mph"``) or
+SI floats. Every argument is checked as the command line checks it (:mod:`batcert.arguments`),
+and every error is a :class:`batcert.BatcertError`: bad input in a file
+:class:`batcert.InputError` (every problem, with its file and line), an unknown name
+:class:`batcert.NotFound`, an argument or request that cannot mean anything
+:class:`batcert.UsageProblem` (its message starts with the argument's name).
 
 Results that are costly to rebuild (barrel shells, beam modes, ball fits) are kept in batcert's
 cache directory as the command line keeps them (:func:`use_cache`; on by default).
@@ -18,6 +21,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
+
+from batcert import arguments as args
 
 if TYPE_CHECKING:
     from batcert.commands.inputs import LoadedBat, ProtocolInputs
@@ -56,23 +61,75 @@ def _ready() -> None:
 def load_bat(bat: str | Path) -> LoadedBat:
     """A bat file (a path or a shipped name), validated, built and reconciled to its measured
     mass, CG and MOI. ``.built.spec`` is the file's content; ``.built`` the model."""
-    from batcert.commands.inputs import load_bat_any
     _ready()
-    return load_bat_any(str(bat))
+    return _bat(bat)
 
 
 def load_protocol(protocol: str | Path) -> ProtocolInputs:
     """A protocol (a path or a shipped id) with its ball, validated."""
+    return _protocol(protocol)
+
+
+def _loaded_types():
+    from batcert.commands.inputs import LoadedBat, ProtocolInputs
+    return LoadedBat, ProtocolInputs
+
+
+def _bat(bat, name: str = "bat") -> LoadedBat:
+    """A loaded bat from a name, a path or a loaded bat; a protocol's name given as the bat
+    (arguments swapped) is said to be one."""
+    from batcert.commands.inputs import load_bat_any
+    from batcert.specs.resolve import NotFound
+    value = args.name_or_path(name, bat, "bat", _loaded_types()[0])
+    if not isinstance(value, str):
+        return value
+    try:
+        return load_bat_any(value)
+    except NotFound:
+        _swapped(name, value, "bat", "protocol")
+        raise
+
+
+def _protocol(protocol, name: str = "protocol") -> ProtocolInputs:
     from batcert.commands.inputs import load_protocol_any
-    return load_protocol_any(str(protocol))
+    from batcert.specs.resolve import NotFound
+    value = args.name_or_path(name, protocol, "protocol", _loaded_types()[1])
+    if not isinstance(value, str):
+        return value
+    try:
+        return load_protocol_any(value)
+    except NotFound:
+        _swapped(name, value, "protocol", "bat")
+        raise
 
 
-def _bat(bat: str | Path | LoadedBat) -> LoadedBat:
-    return load_bat(bat) if isinstance(bat, (str, Path)) else bat
+def _swapped(name: str, value: str, kind: str, other: str) -> None:
+    """An :class:`~batcert.arguments.ArgumentError` when ``value``, not a ``kind``, is a
+    shipped ``other`` (the arguments given in the wrong order)."""
+    from batcert.specs.resolve import shipped_names
+    if value in shipped_names(other):
+        raise args.ArgumentError(name, f"{value!r} is a shipped {other}, not a {kind}: are the "
+                                 "arguments in the wrong order?")
 
 
-def _protocol(protocol: str | Path | ProtocolInputs) -> ProtocolInputs:
-    return load_protocol(protocol) if isinstance(protocol, (str, Path)) else protocol
+def _named(values, name: str, kind: str, at_least: int = 0) -> list[str]:
+    """Names or paths for the commands that take them: a loaded bat stands for its file."""
+    loaded = _loaded_types()[0]
+    if isinstance(values, loaded):
+        values = [values]
+    if isinstance(values, Sequence) and not isinstance(values, str):
+        values = [str(v.path) if isinstance(v, loaded) else v for v in values]
+    return args.names_or_paths(name, values, kind, at_least)
+
+
+def _one_named(value, name: str, kind: str) -> str:
+    loaded = _loaded_types()[0]
+    return str(value.path) if isinstance(value, loaded) else args.name_or_path(name, value, kind)
+
+
+def _engine(engine) -> str:
+    from batcert.engines import available_engines
+    return args.choice("engine", engine, available_engines())
 
 
 def run(bat: str | Path | LoadedBat, protocol: str | Path | ProtocolInputs,
@@ -81,12 +138,13 @@ def run(bat: str | Path | LoadedBat, protocol: str | Path | ProtocolInputs,
     protocol's rule locates, its verdict against the limit, every condition's details."""
     from batcert.commands.run import run as run_protocols
     _ready()
+    engine = _engine(engine)
     [result] = run_protocols(_bat(bat), [_protocol(protocol)], engine)
     return result
 
 
-def compare(bats: Sequence[str | Path], protocols: Sequence[str | Path] = (),
-            study: str | None = None, reference: str | None = None,
+def compare(bats: Sequence[str | Path | LoadedBat], protocols: Sequence[str | Path] = (),
+            study: str | None = None, reference: str | Path | LoadedBat | None = None,
             engine: str = "flexible", figures: bool = False) -> ComparisonResult:
     """Two or more bats under the same protocols (or a study's), with the relative performance
     of each against the reference (Smith 2001 Eq. 6) and, for a study, its claims checked;
@@ -94,69 +152,108 @@ def compare(bats: Sequence[str | Path], protocols: Sequence[str | Path] = (),
     the claims that read a figure are not tested, and say so)."""
     from batcert.commands.compare import run_comparison
     _ready()
-    return run_comparison([str(b) for b in bats], [str(p) for p in protocols], study,
-                          reference, engine, figures=figures)
+    bat_names = _named(bats, "bats", "bat")
+    protocol_names = args.names_or_paths("protocols", protocols, "protocol", 0)
+    if study is not None:
+        args.name_or_path("study", study, "study")
+    ref = None if reference is None else _one_named(reference, "reference", "bat")
+    return run_comparison(bat_names, protocol_names, study, ref, _engine(engine),
+                          figures=_flag("figures", figures))
 
 
-def league(league_id: str | Path, bats: Sequence[str | Path],
+def _flag(name: str, value) -> bool:
+    if not isinstance(value, bool):
+        raise args.ArgumentError(name, f"expected True or False, got {value!r}")
+    return value
+
+
+def league(league_id: str | Path, bats: Sequence[str | Path | LoadedBat],
            engine: str = "flexible") -> LeagueResult:
     """Every rule of a league (shipped id or file) on every bat."""
     from batcert.commands.league import run_league
     _ready()
-    return run_league(str(league_id), [str(b) for b in bats], engine)
+    return run_league(args.name_or_path("league_id", league_id, "league"),
+                      _named(bats, "bats", "bat", 1), _engine(engine))
 
 
-def field(bats: str | Path | Sequence[str | Path], batters: str | Sequence[str] = "college",
-          reference: str | Path = "ash-34", engine: str = "flexible", *,
-          pitch_speed: float | None = None, launch_angle: float = 28.0,
+def field(bats: str | Path | LoadedBat | Sequence[str | Path | LoadedBat],
+          batters: str | Sequence[str] = "college",
+          reference: str | Path | LoadedBat = "ash-34", engine: str = "flexible", *,
+          pitch_speed: float | str | None = None, launch_angle: float = 28.0,
           backspin: float | None = None, sidespin: float | None = None,
-          temperature: float = 294.261, elevation: float = 0.0) -> FieldResult:
+          temperature: float | str = 294.261, elevation: float | str = 0.0) -> FieldResult:
     """What ``bats`` do in play for each batter profile (shipped: ``youth-12u``,
     ``high-school``, ``college``, ``pro``, ``fastpitch``, ``slowpitch``; a batter YAML path;
     ``"all"``): each bat swung at the speed its MOI allows, its best batted-ball speed, sweet
     zone, e_A and carry, and the gains over ``reference``, also under a constant swing speed.
-    ``pitch_speed`` [m/s] replaces the profiles' own; ``launch_angle`` [deg]; spins [rpm]
-    (default: Nathan's calculator's for the angle); ``temperature`` [K]; ``elevation`` [m]."""
+    ``pitch_speed`` [m/s, or ``"85 mph"``] replaces the profiles' own; ``launch_angle`` [deg];
+    spins [rpm] (default: Nathan's calculator's for the angle); ``temperature`` [K, or
+    ``"70F"``]; ``elevation`` [m, or ``"5280 ft"``]."""
     import math
 
     from batcert.commands.field import FieldSettings, run_field
     from batcert.physics.trajectory import RPM
     _ready()
-    settings = FieldSettings(math.radians(launch_angle),
-                             None if backspin is None else backspin * RPM,
-                             None if sidespin is None else sidespin * RPM, temperature,
-                             elevation, pitch_speed=pitch_speed)
-    bat_list = [bats] if isinstance(bats, (str, Path)) else list(bats)
-    batter_list = [batters] if isinstance(batters, str) else list(batters)
-    return run_field([str(b) for b in bat_list], batter_list, str(reference), engine, settings)
+    back, side = args.spin("backspin", backspin), args.spin("sidespin", sidespin)
+    settings = FieldSettings(math.radians(args.launch_angle(launch_angle)),
+                             None if back is None else back * RPM,
+                             None if side is None else side * RPM,
+                             args.temperature(temperature), args.elevation(elevation),
+                             pitch_speed=args.pitch_speed(pitch_speed))
+    bat_list = _named(bats if isinstance(bats, Sequence) and not isinstance(bats, str)
+                      else [bats], "bats", "bat", 1)
+    batter_list = args.names_or_paths("batters", [batters] if isinstance(batters, (str, Path))
+                                      else batters, "batter", 1)
+    return run_field(bat_list, batter_list, _one_named(reference, "reference", "bat"),
+                     _engine(engine), settings)
 
 
-def sweep(bat: str | Path, protocol: str | Path, vary: Sequence[str],
+def sweep(bat: str | Path | LoadedBat, protocol: str | Path, vary: Sequence[str],
           engine: str = "flexible", workers: int = 1) -> SweepResult:
     """The protocol's result over one or two varied parameters, each ``"PARAM=START:STOP:N"``
     as on the command line (``"wall=80%:120%:5"``, ``"pitch_speed=50m/s:70m/s:3"``)."""
     from batcert.commands.sweep import plan_sweep, run_sweep
     _ready()
-    return run_sweep(plan_sweep(str(bat), str(protocol), list(vary), engine=engine),
-                     workers=workers)
+    n = args.workers(workers)
+    plan = plan_sweep(_one_named(bat, "bat", "bat"), args.name_or_path("protocol", protocol,
+                                                                         "protocol"),
+                      _texts("vary", vary), engine=_engine(engine))
+    return run_sweep(plan, workers=n)
 
 
-def design(bat: str | Path, protocol: str | Path, parameter: str,
+def _texts(name: str, values) -> list[str]:
+    """A list of strings (``vary``); a single string is taken as a list of one."""
+    items = [values] if isinstance(values, str) else values
+    if not isinstance(items, Sequence) or not all(isinstance(v, str) for v in items):
+        raise args.ArgumentError(name, f"expected a list of 'PARAM=START:STOP:N' strings, got "
+                                 f"{values!r}"[:300])
+    return list(items)
+
+
+def design(bat: str | Path | LoadedBat, protocol: str | Path, parameter: str,
            range_text: str | None = None, engine: str = "flexible",
            points: int | None = None) -> SweepResult:
     """Every value of ``parameter`` in ``range_text`` (``"40m/s:75m/s"``) where the protocol's
     metric meets its limit: ``.design.roots``."""
     from batcert.commands.sweep import DEFAULT_POINTS, run_design
     _ready()
-    return run_design(str(bat), str(protocol), parameter, range_text, engine,
-                      DEFAULT_POINTS if points is None else points)
+    if not isinstance(parameter, str):
+        raise args.ArgumentError("parameter", f"expected a parameter's name, got {parameter!r}")
+    if range_text is not None and not isinstance(range_text, str):
+        raise args.ArgumentError("range_text", f"expected 'A:B' with units, got {range_text!r}")
+    return run_design(_one_named(bat, "bat", "bat"),
+                      args.name_or_path("protocol", protocol, "protocol"), parameter,
+                      range_text, _engine(engine),
+                      DEFAULT_POINTS if points is None else args.whole("points", points))
 
 
 def reduce(session: str | Path, protocol: str | Path, decision_rule: str = "simple",
-           engine: str = "flexible", bat: str | Path | None = None) -> LabResult:
+           engine: str = "flexible", bat: str | Path | LoadedBat | None = None) -> LabResult:
     """A lab session's measured hits reduced to a certified value with its uncertainty and a
     verdict under ``decision_rule`` (docs/lab-reduction.md), beside the model's prediction."""
-    from batcert.commands.reduce import run_reduce
+    from batcert.commands.reduce import DECISION_RULES, run_reduce
     _ready()
-    return run_reduce(str(session), str(protocol), decision_rule, engine,
-                      None if bat is None else str(bat))
+    return run_reduce(args.name_or_path("session", session, "session"),
+                      args.name_or_path("protocol", protocol, "protocol"),
+                      args.choice("decision_rule", decision_rule, list(DECISION_RULES)),
+                      _engine(engine), None if bat is None else _one_named(bat, "bat", "bat"))

@@ -10,6 +10,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 
+class BatcertError(Exception):
+    """Every error batcert raises for something its caller can fix: bad input
+    (:class:`InputError`), an unknown name (:class:`batcert.specs.resolve.NotFound`), an
+    impossible request or argument (:class:`UsageProblem`), a bat that cannot be modelled
+    (:class:`ModelError`), reports that cannot be written (:class:`OutputError`), a scheduler
+    that cannot be used (:class:`SchedulerUnavailable`). Anything else is a bug."""
+
+
 @dataclass(frozen=True)
 class Problem:
     """One thing wrong with an input file."""
@@ -49,7 +57,7 @@ def _excerpt(text: str, column: int | None) -> tuple[str, int | None]:
 
 
 @dataclass
-class InputError(Exception):
+class InputError(BatcertError):
     """All problems found in one or more input files."""
 
     problems: list[Problem] = field(default_factory=list)
@@ -91,7 +99,7 @@ class Collector:
             raise InputError(sorted(self.problems, key=lambda p: p.line or 0))
 
 
-class ModelError(ValueError):
+class ModelError(BatcertError, ValueError):
     """A bat that cannot be modelled (an infeasible reconciliation, a wall that fills the
     section, an absurd calibration); ``field`` names the offending spec field, dotted."""
 
@@ -100,17 +108,17 @@ class ModelError(ValueError):
         self.field = field_
 
 
-class UsageProblem(ValueError):
+class UsageProblem(BatcertError, ValueError):
     """The command line asks for something impossible (e.g. fewer than two bats to compare)."""
 
 
-class SchedulerUnavailable(Exception):
+class SchedulerUnavailable(BatcertError):
     """``--scheduler`` cannot be used: dask.distributed is not installed, or the scheduler cannot
     be reached, does not speak dask, has no workers: an environment problem, not bad input
     (one line, exit 5)."""
 
 
-class OutputError(OSError):
+class OutputError(BatcertError, OSError):
     """Reports (or a sweep's journal) cannot be written where asked (permissions, a full disk,
     a path that is a file or too long): an environment problem, not bad input (exit 4)."""
 

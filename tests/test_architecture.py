@@ -18,16 +18,19 @@ PACKAGE = Path(str(resources.files(batcert)))
 
 # layer -> layers (package folders or top-level modules) it may import, besides itself
 ALLOWED = {
-    "units": set(), "errors": set(), "conventions": set(), "version": set(), "cache": set(),
+    "units": set(), "errors": set(),
+    # the commands' arguments, read and checked once for the command line and the library
+    "arguments": {"units", "errors"}, "conventions": set(), "version": set(), "cache": set(),
     # a root finder and a quantile without scipy's large imports (imports nothing)
     "numerics": set(),
     # the one owner of kept results (speed machinery beneath the physics, imports nothing)
     "workspace": set(),
     # the package's top: its version, and the library's functions (imported on first use)
-    "__init__": {"version", "api"},
+    "__init__": {"version", "api", "errors", "specs"},
     "physics": {"workspace"},
     "methods": {"physics"},
-    "engines": {"physics", "workspace"},
+    # (and the error family: an engine that does not exist is a usage problem)
+    "engines": {"physics", "workspace", "errors"},
     "results": set(),
     # the spec schemas take their names from the registries of methods/ (metrics, aggregates,
     # impact rules) and from specs/kinds.py (claim checks, league rule kinds)
@@ -54,9 +57,10 @@ ALLOWED = {
                  "version"},
     "console": {"units", "reports", "results", "version"},
     # the library: the commands' functions and the cache it keeps, typed results
-    "api": {"commands", "physics", "cache", "results", "workspace"},
-    "cli": {"api", "version", "__init__", "console", "errors", "commands", "engines", "specs", "units", "reports",
-            "runner", "cache", "physics"},
+    "api": {"commands", "physics", "cache", "results", "workspace", "arguments", "errors",
+            "specs", "engines"},
+    "cli": {"arguments", "api", "version", "__init__", "console", "errors", "commands", "engines",
+            "specs", "units", "reports", "runner", "cache", "physics"},
     # the installed command's first lines: Ctrl-C handled before the command line loads
     "launch": {"cli"},
     "__main__": {"cli", "launch"},

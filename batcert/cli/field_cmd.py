@@ -6,6 +6,7 @@ import math
 
 import click
 
+from batcert import arguments as args
 from batcert import console
 from batcert.cli.base import (
     ENVIRONMENT_EXIT_CODES,
@@ -28,38 +29,16 @@ Exit codes:
   3  invalid input (a spec file has errors; nothing is written)
 """ + ENVIRONMENT_EXIT_CODES
 
-_TEMPERATURE = {"f": lambda t: (t - 32) * 5 / 9 + 273.15, "c": lambda t: t + 273.15,
-                "k": lambda t: t}
-
-
-def _quantity(dimension: str, lo: float, hi: float):
-    """A click callback reading ``85 mph`` / ``5280 ft`` into SI, within [lo, hi] (which may
-    lie beyond what a bat's quantities take: a field's elevation)."""
+def _read(reader):
+    """A click callback reading an option with ``reader`` (:mod:`batcert.arguments`, which the
+    library uses too): its refusal is click's bad value (exit 2)."""
     def read(ctx, param, value):
-        if value is None:
-            return None
-        from batcert.units import UnitError, parse_quantity
+        from batcert.arguments import ArgumentError
         try:
-            v = parse_quantity(value, dimension, largest=max(abs(lo), abs(hi)))
-        except UnitError as exc:
-            raise click.BadParameter(str(exc)) from None
-        if not lo <= v <= hi:
-            raise click.BadParameter(f"{value} is outside {lo:g} to {hi:g} (SI)")
-        return v
+            return reader(value)
+        except ArgumentError as exc:
+            raise click.BadParameter(exc.reason) from None
     return read
-
-
-def _temperature(ctx, param, value):
-    text = value.strip().replace("\u00b0", "").replace(" ", "").lower()
-    try:
-        kelvin = _TEMPERATURE[text[-1]](float(text[:-1]))
-    except (KeyError, ValueError, IndexError):
-        raise click.BadParameter(f"cannot read {value!r}: give a number with F, C or K, "
-                                 "e.g. 70F or 21C") from None
-    # -43 to 57 C, ends included (issue 40: 57C itself was refused by a bound in kelvin)
-    if not -43.0 - 1e-9 <= kelvin - 273.15 <= 57.0 + 1e-9:  # compared in C: 1e-9 of rounding
-        raise click.BadParameter(f"{value} is outside -43 to 57 C")
-    return kelvin
 
 
 @main.command(epilog=FIELD_EXIT_CODES + """
@@ -77,18 +56,20 @@ Examples:
                    "several [default: college].")
 @click.option("--reference", default=None, shell_complete=_complete("bat"),
               help="Reference bat the gains are measured from [default: ash-34].")
-@click.option("--pitch", "pitch_speed", default=None, callback=_quantity("speed", 0.0, 60.0),
+@click.option("--pitch", "pitch_speed", default=None, callback=_read(args.pitch_speed),
               help="Pitch speed, e.g. 85mph [default: each batter profile's].")
-@click.option("--launch-angle", default=28.0, show_default=True,
-              type=click.FloatRange(-10.0, 60.0), help="Launch angle [deg].")
-@click.option("--backspin", default=None, type=click.FloatRange(-5000.0, 6000.0),
+@click.option("--launch-angle", default=28.0, show_default=True, type=float,
+              callback=_read(args.launch_angle), help="Launch angle [deg], -10 to 60.")
+@click.option("--backspin", default=None, type=float,
+              callback=_read(lambda v: args.spin("backspin", v)),
               help="Backspin [rpm] [default: the trajectory calculator's for the launch "
                    "angle].")
-@click.option("--sidespin", default=None, type=click.FloatRange(-5000.0, 5000.0),
+@click.option("--sidespin", default=None, type=float,
+              callback=_read(lambda v: args.spin("sidespin", v)),
               help="Sidespin [rpm] [default: the calculator's, -849 rpm].")
 @click.option("--elevation", default="0 ft", show_default=True,
-              callback=_quantity("length", -500.0, 5000.0), help="Field elevation.")
-@click.option("--temperature", default="70F", show_default=True, callback=_temperature,
+              callback=_read(args.elevation), help="Field elevation.")
+@click.option("--temperature", default="70F", show_default=True, callback=_read(args.temperature),
               help="Air temperature (F, C or K).")
 @_output_options("in-play prediction")
 @FIGURES_OPTION

@@ -7,6 +7,7 @@ import sys
 import click
 
 from batcert import console
+from batcert.arguments import BOUNDS
 from batcert.cli.base import (
     FIGURES_OPTION,
     OUTPUT_EXIT_CODE,
@@ -64,7 +65,7 @@ class _WithParameters(click.Command):
 def _scale_options(func):
     """--workers and --scheduler, shared by sweep and design."""
     for option in reversed([
-        click.option("--workers", type=click.IntRange(1, 256), default=1, show_default=True,
+        click.option("--workers", type=click.IntRange(*BOUNDS["workers"]), default=1, show_default=True,
                      help="Evaluate variants in this many processes on this machine."),
         click.option("--scheduler", default=None, metavar="ADDRESS",
                      help="Run the variants on a dask.distributed cluster (e.g. "
@@ -149,7 +150,7 @@ Examples:
               help="The parameter to solve for (the names of `batcert sweep`).")
 @click.option("--range", "range_text", default=None, metavar="A:B",
               help="Where to look, with units or as percent of nominal [default: 50%:150%].")
-@click.option("--points", type=click.IntRange(3, 1001), default=9, show_default=True,
+@click.option("--points", type=click.IntRange(*BOUNDS["points"]), default=9, show_default=True,
               help="Points of the margin curve that brackets the roots.")
 @click.option("--tolerance", default=None, help="Locate the root to within this (with its "
               "unit, e.g. '0.001 mm') [default: the parameter's own, see docs/sweeps.md].")

@@ -10,6 +10,7 @@ import importlib
 from dataclasses import dataclass
 
 from batcert.engines.base import Engine, ImpactBatch, ImpactOutcome, Job
+from batcert.errors import UsageProblem
 
 __all__ = ["ENGINES", "Engine", "EngineEntry", "EngineUnavailable", "ImpactBatch",
            "ImpactOutcome", "Job", "available_engines", "get_engine"]
@@ -34,7 +35,7 @@ ENGINES: dict[str, EngineEntry] = {
 }
 
 
-class EngineUnavailable(LookupError):
+class EngineUnavailable(UsageProblem, LookupError):
     """The requested engine tier does not exist in this installation."""
 
 

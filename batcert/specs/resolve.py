@@ -11,6 +11,8 @@ import functools
 from collections.abc import Callable
 from pathlib import Path
 
+from batcert.errors import BatcertError
+
 _PACKAGE = Path(__file__).resolve().parents[1]
 _CHECKOUT = _PACKAGE.parent
 
@@ -54,8 +56,8 @@ def _top_level_key(path: Path, key: str) -> bool:
     return any(line.startswith(f"{key}:") for line in text.splitlines())
 
 
-class NotFound(LookupError):
-    pass
+class NotFound(BatcertError, LookupError):
+    """No shipped input of that name and no such file (with the shipped names)."""
 
 
 # where resolve() says which of two differing copies of a shipped file it used (the command

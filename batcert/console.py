@@ -4,8 +4,7 @@ On a terminal, rich draws them (styles, wrapping to the window); piped or redire
 plain text, aligned when they fit ``COLUMNS`` (default 140) and otherwise stacked one
 ``header: value`` per line, never cut. With ``--json`` only JSON is written to stdout so that
 scripts can parse it. Tables are the reports' own :class:`~batcert.reports.table.Table` objects
-with the reports' formatting (:mod:`batcert.reports.format`); every piece of user text is shown
-as plain text, never read as console markup or emoji codes.
+with the reports' formatting (:mod:`batcert.reports.format`); user text is shown as plain text.
 """
 
 from __future__ import annotations
@@ -295,7 +294,7 @@ def run_summary(result, paths: Sequence[Any]) -> None:
     _emit([(f"  predicted {fmt.metric_word(m)} ({fmt.aggregate_word(result.aggregate)} of {n} "
              f"condition{'s' if n > 1 else ''}) = {fmt.metric_value(result.value, m)}"
              f"{limit}   [model: engine {result.engine}, {result.support}]", "")])
-    if result.model_offset and not _Settings.quiet:
+    if result.model_offset:  # with -q too: it qualifies the verdict
         _emit([(f"  known offset of the model: {result.model_offset}", "")])
     shown = fmt.condition_metrics()
     t = Table(["condition", "pitch\n[m/s]", "bat w1\n[rad/s]", "impact\n[m from pivot]",
@@ -346,13 +345,15 @@ def league_summary(result, paths: Sequence[Any]) -> None:
                     [[r["id"], r["value"], r["limit"], r["badge"], r["margin"], r["note"]]
                      for r in b["rules"]], [False, True, True, False, True, False]))
         _warnings(b["warnings"])
+    for o in view["offsets"]:
+        _emit([(f"known offset of the model ({o})", "")])
     _wrote(paths)
 
 
 def field_summary(result, paths: Sequence[Any]) -> None:
     """Terminal view of an in-play prediction: per batter profile, the bats' table."""
-    from batcert.reports.field_view import PREDICTION, terminal_tables
-    _emit([("model prediction", "bold"), (f"  {PREDICTION}", "")])
+    from batcert.reports.field_view import prediction, terminal_tables
+    _emit([("model prediction", "bold"), (f"  {prediction(result)}", "")])
     for title, t in terminal_tables(result):
         table(t, title)
     _warnings(result.warnings)

@@ -175,7 +175,7 @@ def _performance(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleResu
             f"{run.engine}; the league's limit replaces the protocol's own")
     return RuleResult(rule.id, "", rule.kind, run.value, rule.limit, verdict, unit,
                       tolerance=rule.tolerance, margin=margin, protocol=run.protocol,
-                      metric=run.metric, note=note)
+                      metric=run.metric, note=note, model_offset=run.model_offset)
 
 
 def _min_compression(rule: RuleSpec, f: BatFacts, run: RunResult | None) -> RuleResult:

@@ -12,7 +12,7 @@ from batcert.commands.inputs import BatterInputs, load_bats, load_batter_any, sa
 from batcert.engines import get_engine
 from batcert.errors import UsageProblem
 from batcert.inplay.barrel import WINDOW_FROM_TIP
-from batcert.inplay.evaluate import Launch, evaluate_batter
+from batcert.inplay.evaluate import MODEL_OFFSET, Launch, evaluate_batter
 from batcert.physics.trajectory import RPM, air_density, default_spin
 from batcert.results.field import FieldResult
 from batcert.results.serialise import utc_now
@@ -110,4 +110,4 @@ def run_field(bats: Sequence[str], batters: Sequence[str] = (), reference: str |
         loaded[at].built.spec.name, eng.name, launch.launch_angle, launch.backspin,
         launch.sidespin, spin_source, launch.air_density, settings.temperature,
         settings.elevation, settings.relative_humidity, list(WINDOW_FROM_TIP), results,
-        __version__, utc_now(), _warnings(profiles, launch))
+        __version__, utc_now(), _warnings(profiles, launch), MODEL_OFFSET)

@@ -19,6 +19,13 @@ PREDICTION = ("Model prediction from the bat, ball and batter files (swing law, 
               "trajectory), not a measurement.")
 
 
+def prediction(result: FieldResult) -> str:
+    """What the numbers are (the model's), with the model's known offset for them."""
+    if not result.model_offset:
+        return PREDICTION
+    return f"{PREDICTION} Known offset of the model: {result.model_offset}."
+
+
 def gain_speed(v: float) -> str:
     return f"{v / MPH:+.1f} mph"
 
@@ -169,7 +176,7 @@ def field_view(result: FieldResult, charts: bool = True) -> dict[str, Any]:
         "result": result, "page_title": f"In play against {result.reference} \u2014 batcert",
         "title": f"In play: {', '.join(b.bat for b in bats if not b.is_reference)} against "
                  f"{result.reference}",
-        "sentence": PREDICTION,
+        "sentence": prediction(result),
         "facts": [
             ("Reference bat", result.reference), ("Engine", f"{result.engine}, free bat"),
             ("Launch", f"{math.degrees(result.launch_angle):.1f} deg, backspin "

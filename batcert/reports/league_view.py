@@ -21,6 +21,25 @@ def predicted(rules: Sequence[RuleResult]) -> bool:
     return any(r.protocol and r.verdict in ("pass", "fail") for r in rules)
 
 
+def rests_on_model(rules: Sequence[RuleResult], verdict: str | None) -> bool:
+    """Whether a bat's ``verdict`` over ``rules`` is the model's: a FAIL is "predicted" only
+    when every rule that fails is a performance rule (a bat too long fails outright); a PASS
+    (or an incomplete verdict) when a performance rule was judged."""
+    if verdict == "fail":
+        failing = [r for r in rules if r.verdict == "fail"]
+        return bool(failing) and all(r.protocol for r in failing)
+    return predicted(rules)
+
+
+def offsets(rules: Sequence[RuleResult]) -> list[str]:
+    """The model's known offsets of the performance rules judged (each once, by metric)."""
+    out: dict[str, str] = {}
+    for r in rules:
+        if r.protocol and r.verdict in ("pass", "fail") and r.model_offset:
+            out.setdefault(r.metric or "", r.model_offset)
+    return [f"{fmt.metric_word(m)}: {text}" for m, text in out.items()]
+
+
 def _badge(verdict: str | None, by_model: bool) -> Badge:
     return badge(PREDICTED_BADGES if by_model else VERDICT_BADGES, verdict)
 
@@ -41,8 +60,8 @@ def overall(bats: Sequence[Any]) -> tuple[Badge, str]:
                                   "modelled, so it is not shown to pass."}[worst]
     else:
         sentence = f"Of {n} bats, " + ", ".join(parts) + "."
-    by_model = any(predicted(b.rules) for b in bats)
-    if by_model:
+    by_model = any(rests_on_model(b.rules, b.verdict) for b in bats if b.verdict == worst)
+    if any(predicted(b.rules) for b in bats):
         sentence += (" Performance rules are the model's prediction from the bat file, not a "
                      "measurement.")
     return _badge(worst, by_model), sentence
@@ -69,7 +88,7 @@ def league_view(result: LeagueResult) -> dict[str, Any]:
         anchor = f"bat-{i + 1}"
         counts = {v: sum(r.verdict == v for r in b.rules) for v in verdicts}
         summary.append({"bat": b.bat, "anchor": anchor,
-                        "badge": _badge(b.verdict, predicted(b.rules)),
+                        "badge": _badge(b.verdict, rests_on_model(b.rules, b.verdict)),
                         "counts": [counts[v] for v in verdicts]})
         f = b.facts
         cls = f.get("material_class") or "class unknown"
@@ -80,7 +99,8 @@ def league_view(result: LeagueResult) -> dict[str, Any]:
                  ("Smallest diameter", fmt.quantity(f["min_diameter"], "length", 4)),
                  ("Construction", Display(str(f["construction"]), None)),
                  ("Material", Display(f"{f['material']} ({cls})", None))]
-        bats.append({"bat": b.bat, "anchor": anchor, "badge": _badge(b.verdict, predicted(b.rules)),
+        bats.append({"bat": b.bat, "anchor": anchor,
+                     "badge": _badge(b.verdict, rests_on_model(b.rules, b.verdict)),
                      "path": b.path, "sha256": b.sha256, "facts": facts,
                      "rules": [rule_row(r) for r in b.rules],
                      "not_modelled": [(r.rule, r.note or "no reason given")
@@ -97,6 +117,7 @@ def league_view(result: LeagueResult) -> dict[str, Any]:
     return {
         "result": result, "page_title": f"League rules: {result.title} \u2014 batcert",
         "badge": head_badge, "sentence": sentence,
+        "offsets": offsets([r for b in result.bats for r in b.rules]),
         "facts": [("League", f"{result.league} (version {result.version})"),
                   ("Rule book", result.reference or fmt.DASH),
                   ("Engine (performance rules)", result.engine),

@@ -109,6 +109,7 @@ class FieldResult(Serialisable):
     batcert_version: str
     created: str
     warnings: list[str] = field(default_factory=list)
+    model_offset: str = ""  # what docs/validation.md finds of these predictions
 
     def return_code(self) -> int:
         """0: a field prediction has no verdict to fail."""

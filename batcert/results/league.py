@@ -29,6 +29,7 @@ class RuleResult:
     source: str = ""
     confidence: str = ""
     note: str = ""  # why not modelled / not applicable, and assumptions
+    model_offset: str = ""  # a performance rule's: the model's known offset for its metric
 
 
 @dataclass

@@ -17,8 +17,12 @@ journal is marked ``rollback`` and the backups are renamed back, which a crash c
 and :func:`recover` finish. Either way recovery then removes what a crash left behind: the
 hidden staging, backup and probe files of batcert, never anything else.
 
-Readers between a crash and the next write can see a mixed set; only the next writer mends it.
-This module knows nothing of reports; :mod:`batcert.reports.write` uses it.
+A set of several files with one stem (a report's ``.md``, ``.html`` and ``.json``) is not
+written this way where symbolic links can be made: :mod:`batcert.reports.linkset` switches it
+in one step, so that readers never see old and new files side by side, even right after a
+crash. The journal serves single files and the rest; there, readers between a crash and the
+next write can see a mixed set. This module knows nothing of reports;
+:mod:`batcert.reports.write` uses it.
 """
 
 from __future__ import annotations
@@ -60,9 +64,14 @@ def write_set(directory: Path, files: dict[str, bytes], modes: dict[str, int]) -
     """Replace ``directory/<name>`` by ``files[name]`` for every name, as one set (module
     notes); ``modes`` gives each new file's permission bits. Finishes or undoes what an earlier
     crash left in ``directory`` first. Raises ``OSError`` with the set as it was before."""
+    from batcert.reports import linkset
     directory = Path(directory)
     with _locked(directory):
         _recover_locked(directory)
+        stem = linkset.stem_of(list(files))
+        if stem is not None and linkset.usable(directory):
+            linkset.write_linked(directory, stem, files, modes)  # one step, no journal
+            return
         entries: list[_Entry] = []
         journal = Path(_reserve(directory, JOURNAL_PREFIX, JOURNAL_SUFFIX))
         try:
@@ -123,6 +132,8 @@ def _recover_locked(directory: Path) -> None:
     for name in os.listdir(directory):
         if _LEFTOVER.match(name) and (directory / name).is_file():
             _remove(directory / name)
+    from batcert.reports.linkset import clean
+    clean(directory)
     _fsync_dir(directory)
 
 

@@ -172,7 +172,7 @@ def test_run_writes_reports(batcert_cli, tmp_path):
     out = tmp_path / "reports"
     result = _run(batcert_cli, "-p", "ncaa-besr", "--out", out)
     assert result.exit_code == 0, result.stderr
-    written = sorted(p.name for p in out.iterdir())
+    written = sorted(p.name for p in out.glob("[!.]*"))
     assert [Path(n).suffix for n in written] == [".html", ".json", ".md"]
     stem = Path(written[0]).stem
     assert all(Path(n).stem == stem for n in written)
@@ -187,7 +187,7 @@ def test_run_json_with_reports_keeps_stdout_clean(batcert_cli, tmp_path):
     result = _run(batcert_cli, "-p", "proposed", "--json", "--out", out, "--format", "json")
     assert result.exit_code == 0
     (printed,) = json.loads(result.stdout)["results"]
-    (saved,) = [json.loads(p.read_text()) for p in out.iterdir()]
+    (saved,) = [json.loads(p.read_text()) for p in out.glob("[!.]*")]
     assert printed == saved
 
 
@@ -276,10 +276,12 @@ def test_bad_output_location_exits_4_before_running(batcert_cli, tmp_path, monke
 
 def test_write_failure_after_running_still_shows_the_verdict(batcert_cli, tmp_path, monkeypatch):
     import batcert.reports.fileset as fileset
+    import batcert.reports.linkset as linkset
 
-    def full(directory, name, data, mode):
+    def full(*args):
         raise OSError(28, "No space left on device")
-    monkeypatch.setattr(fileset, "_stage", full)
+    monkeypatch.setattr(fileset, "_stage", full)  # a set written by the journal
+    monkeypatch.setattr(linkset, "_write", full)  # a set switched by its link
     result = batcert_cli("run", ALUMINIUM, "-p", "ncaa-bbcor", "--out", tmp_path / "reports")
     assert result.exit_code == 4
     assert "FAIL" in result.stdout and "BBCOR" in result.stdout  # the verdict is not lost

@@ -80,7 +80,7 @@ def test_reports_written(batcert_cli, tmp_path):
     result = batcert_cli("compare", ASH, ALU, "--study", "smith2001", "--engine", "rigid",
                          "--out", out)
     assert result.exit_code == 0, result.stderr
-    files = sorted(p.name for p in out.iterdir())
+    files = sorted(p.name for p in out.glob("[!.]*"))
     stem = "compare--smith2001--ash-34-aluminium-34"
     assert files == [f"{stem}.html", f"{stem}.json", f"{stem}.md"]
     md = (out / f"{stem}.md").read_text()

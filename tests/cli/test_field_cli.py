@@ -63,7 +63,7 @@ def test_reports_written(batcert_cli, tmp_path):
                       "--out", out)
     assert res.exit_code == 0, res.stderr
     stem = "field--pro-college--aluminium-34-ash-34"
-    assert sorted(p.name for p in out.iterdir()) == [f"{stem}.html", f"{stem}.json",
+    assert sorted(p.name for p in out.glob("[!.]*")) == [f"{stem}.html", f"{stem}.json",
                                                      f"{stem}.md"]
     saved = json.loads((out / f"{stem}.json").read_text())
     assert saved["kind"] == "field"
@@ -200,7 +200,7 @@ def test_figures_written(batcert_cli, tmp_path):
                       "--figures", out)
     assert res.exit_code == 0, res.stderr
     stem = "field--pro--aluminium-34-ash-34"
-    assert sorted(p.name for p in out.iterdir()) == sorted(
+    assert sorted(p.name for p in out.glob("[!.]*")) == sorted(
         f"{stem}--pro-{f}.{x}" for f in ("exit-speed", "carry") for x in ("svg", "pdf", "png"))
     assert (out / f"{stem}--pro-carry.png").read_bytes().startswith(b"\x89PNG")
     assert "wrote 6 figure files" in res.stderr

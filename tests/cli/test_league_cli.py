@@ -57,7 +57,7 @@ def test_reports_written(batcert_cli, tmp_path):
     result = batcert_cli("league", "ncaa", ASH, ALU, R161, "--engine", "rigid", "--out", out)
     assert result.exit_code == 1
     stem = "league--ncaa--ash-34-aluminium-34-r161"
-    assert sorted(p.name for p in out.iterdir()) == [f"{stem}.html", f"{stem}.json",
+    assert sorted(p.name for p in out.glob("[!.]*")) == [f"{stem}.html", f"{stem}.json",
                                                      f"{stem}.md"]
     md = (out / f"{stem}.md").read_text()
     assert "NOT MODELLED" in md and "not applicable" in md and "FAIL" in md

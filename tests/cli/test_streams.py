@@ -50,7 +50,9 @@ def test_global_flags_work_after_the_subcommand(batcert_cli, flags):
     assert after.exit_code == before.exit_code == 0, after.stderr
     assert after.stdout == before.stdout
     if flags[0] in ("-q", "--quiet"):
-        assert "warning:" not in after.stderr and len(after.stdout.splitlines()) == 2
+        # the verdict, the value and the model's known offset for BESR (issue 40, item 11)
+        assert "warning:" not in after.stderr and len(after.stdout.splitlines()) == 3
+        assert after.stdout.splitlines()[2].lstrip().startswith("known offset of the model")
     else:
         assert "batcert: bat" in after.stderr  # the -v log
 

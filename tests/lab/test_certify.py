@@ -149,7 +149,7 @@ def test_reduce_cli(tmp_path):
     res = CliRunner().invoke(main, ["reduce", str(LAB / "synthetic-scatter.yaml"), "-p",
                                     "ncaa-bbcor", "--engine", "rigid", "--out", str(out)])
     assert res.exit_code == 0, res.output
-    assert sorted(p.suffix for p in out.iterdir()) == [".html", ".json", ".md"]
+    assert sorted(p.suffix for p in out.glob("[!.]*")) == [".html", ".json", ".md"]
     md = next(out.glob("*.md")).read_text(encoding="utf-8")
     assert "Measured BBCOR 0.4933" in md and "simple acceptance" in md
     assert "| Bat serial number | AL34-0001 |" in md  # the session's lab: block

@@ -118,3 +118,21 @@ def sample_result(*, limit: float | None = 1.05, warnings: list[str] | None = No
             "modes_hz": [172.4, 571.9, 1180.6, 1851.2], "contact_time_ms": 0.71,
             "barrel": {"model": "solid", "hoop_frequency_hz": None}},
     )
+
+
+def set_leftovers(directory):
+    """What a report write left in ``directory`` besides its reports: hidden or temporary
+    names, and in the folder of linked sets (batcert.reports.linkset) anything but the stems'
+    current links and the set folders they show."""
+    import os
+
+    from batcert.reports.linkset import SETS
+    out = [p.name for p in directory.iterdir()
+           if p.name != SETS and (p.name.startswith(".") or p.name.endswith(".tmp"))]
+    sets = directory / SETS
+    if sets.is_dir():
+        current = {c.name for c in sets.iterdir() if c.name.endswith(".current")}
+        shown = {os.readlink(sets / c) for c in current}
+        out += [f"{SETS}/{p.name}" for p in sets.iterdir()
+                if p.name not in current and p.name not in shown]
+    return sorted(out)

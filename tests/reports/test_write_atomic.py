@@ -7,9 +7,10 @@ import stat
 from pathlib import Path
 
 import pytest
-from sample import sample_result
+from sample import sample_result, set_leftovers
 
 from batcert.reports import html, markdown, write
+from batcert.reports.linkset import SETS
 from batcert.reports.write import SUFFIXES as FORMATS
 from batcert.reports.write import atomic_write_text, render, write_reports
 from batcert.reports.write import run_stem as default_stem
@@ -24,11 +25,14 @@ def result():
 
 
 def names(directory: Path) -> set[str]:
-    return {p.name for p in directory.iterdir()}
+    """The names a reader sees (dangling links of a set never switched in are not there);
+    the folder of linked sets is batcert's own (batcert.reports.linkset)."""
+    return {p.name for p in directory.iterdir() if p.name != SETS and (p.exists() or
+                                                                        not p.is_symlink())}
 
 
 def temp_files(directory: Path) -> list[str]:
-    return [n for n in names(directory) if n.startswith(".") or n.endswith(".tmp")]
+    return set_leftovers(directory)
 
 
 def break_renderer(monkeypatch: pytest.MonkeyPatch, fmt: str) -> None:

@@ -1,5 +1,7 @@
-"""A report set survives kill -9 at every step of its writing: the next writer into the
-directory finds the whole old set or the whole new set, and removes what the crash left.
+"""A report set survives kill -9 at every step of its writing: a reader finds the whole old set
+or the whole new set at once, before anyone mends anything (the set is switched in one step,
+batcert.reports.linkset; issue 40, item 7: a reader saw old and new files side by side until
+the next run), and the next writer removes what the crash left.
 
 Each case runs a writer in a child process whose file-system calls are counted; at the chosen
 call the child kills itself with SIGKILL (no handler, no cleanup runs). The cases cover every
@@ -17,6 +19,7 @@ import textwrap
 from pathlib import Path
 
 import pytest
+from sample import set_leftovers
 
 from batcert.reports import fileset
 from batcert.reports.write import atomic_write_text
@@ -56,11 +59,14 @@ def write_in_child(directory: Path, kill_at: int, texts: dict[str, str]) -> subp
 
 
 def visible(directory: Path) -> dict[str, str]:
-    return {p.name: p.read_text() for p in directory.iterdir() if not p.name.startswith(".")}
+    """What a reader finds: the files it can open (a link whose set was never switched in
+    cannot be opened, as a file not yet written)."""
+    return {p.name: p.read_text() for p in directory.iterdir()
+            if not p.name.startswith(".") and p.exists()}
 
 
 def hidden(directory: Path) -> list[str]:
-    return sorted(p.name for p in directory.iterdir() if p.name.startswith("."))
+    return set_leftovers(directory)
 
 
 def calls_of_a_whole_write(tmp_path: Path, old: bool) -> int:
@@ -88,6 +94,7 @@ def test_kill_9_at_every_step_leaves_a_whole_set_after_recovery(tmp_path, old):
             (d / n).write_text(t)
         child = write_in_child(d, kill_at, NEW)
         assert child.returncode == -signal.SIGKILL, (kill_at, child.stderr)
+        assert visible(d) in (before, NEW), f"killed at call {kill_at}: a reader sees a mix"
         fileset.recover(d)
         after = visible(d)
         assert after in (before, NEW), f"killed at call {kill_at} of {steps}: a mixed set"
@@ -152,7 +159,7 @@ def test_concurrent_writers_take_turns(tmp_path):
     procs = [subprocess.Popen([sys.executable, "-c", script, who, str(tmp_path)])
              for who in ("one", "two")]
     assert [p.wait(timeout=120) for p in procs] == [0, 0]
-    texts = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    texts = {p.name: p.read_bytes() for p in tmp_path.iterdir() if p.is_file()}
     assert sorted(texts) == ["a.html", "a.json", "a.md"]
     heads = {t.split(b" ")[0] + t.split(b" ")[1] for t in texts.values()}
     assert len(heads) == 1  # every file from the same writer's same round
@@ -174,3 +181,25 @@ def test_a_rename_refused_after_the_commit_point_rolls_back(tmp_path, monkeypatc
         fileset.write_set(tmp_path, {n: t.encode() for n, t in NEW.items()},
                           {n: 0o644 for n in NEW})
     assert visible(tmp_path) == OLD and hidden(tmp_path) == []
+
+
+def test_a_sets_folder_that_is_a_link_is_not_followed(tmp_path):
+    # a `.batcert-sets` planted as a link to another folder: the set is written by the journal
+    # instead, and nothing is written where the link points
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    d = tmp_path / "d"
+    d.mkdir()
+    (d / ".batcert-sets").symlink_to(elsewhere)
+    fileset.write_set(d, {n: t.encode() for n, t in NEW.items()}, {n: 0o644 for n in NEW})
+    assert visible(d) == NEW and list(elsewhere.iterdir()) == []
+    assert all(not (d / n).is_symlink() for n in NEW)
+
+
+def test_rewriting_one_format_keeps_the_others_of_the_set(tmp_path):
+    fileset.write_set(tmp_path, {n: t.encode() for n, t in OLD.items()}, {n: 0o644 for n in OLD})
+    assert all((tmp_path / n).is_symlink() for n in OLD)  # linked through the set's one link
+    two = {"r.md": b"md 2\n", "r.json": b"json 2\n"}
+    fileset.write_set(tmp_path, two, {n: 0o644 for n in two})
+    assert visible(tmp_path) == {"r.md": "md 2\n", "r.json": "json 2\n", "r.html": OLD["r.html"]}
+    assert hidden(tmp_path) == []

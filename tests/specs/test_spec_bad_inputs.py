@@ -59,6 +59,11 @@ CASES: dict[str, list[Expect]] = {
     ],
     "bat-layup-on-solid.yaml": [Expect(6, "layup", "only a hollow bat has a wall to lay up")],
     "bat-layup-overlap.yaml": [Expect(10, "layup[1].span", "overlaps span 0")],
+    # issue 40 item 6c: a span that holds no slice's centre was an IndexError in the model
+    "bat-layup-span-narrower-than-a-slice.yaml": [
+        Expect(10, "layup[1].span", "the span (0.254 mm, 50.80 to 50.83 cm from the knob) holds "
+                                    "no slice's centre: the model slices the bat every 9.9 mm"),
+    ],
     "protocol-break-in-without-compression.yaml": [
         Expect(14, "break_in", "the break-in reads the barrel's compression: add "
                                "`barrel_compression`"),

@@ -369,6 +369,10 @@ def _fitted(path, data, tests, mass: float, radius: float, held=(),
         if exc.test is not None:
             key, p = tests[exc.test]
             raise InputError([Problem(str(path), p.line, key, str(exc))]) from None
+        if exc.parameter is not None:
+            line = data["contact"].key_pos.get(exc.parameter, (data.line, None))[0]
+            raise InputError([Problem(str(path), line, f"contact.{exc.parameter}",
+                                      str(exc))]) from None
         line = data["contact"].key_pos.get("model", (data.line, None))[0]
         message = str(exc) if exc.converged else f"{exc} ({_lines_of(tests)})"
         raise InputError([Problem(str(path), line, "contact.model", message)]) from None

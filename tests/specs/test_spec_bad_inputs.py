@@ -162,6 +162,11 @@ CASES: dict[str, list[Expect]] = {
     ],
     # --- ball files
     "ball-cor-out-of-range.yaml": [Expect(7, "cor[1]", "COR must be a number in (0, 1], got 1.2")],
+    # issue 40 item 6d: a ZeroDivisionError in the fit's coordinates
+    "ball-relaxed-fraction-1-held.yaml": [
+        Expect(12, "contact.relaxed_fraction", "relaxed_fraction held at 1: the fit needs it "
+                                               "strictly between 0 and 1"),
+    ],
     "ball-speeds-not-increasing.yaml": [
         Expect(7, "cor[1]", "impact speeds must increase; 10 m/s follows 50 m/s"),
     ],

@@ -38,14 +38,13 @@ import numpy as np
 
 from batcert.physics.balls import footprint
 from batcert.physics.balls.fit_budget import Budget, Exhausted
+from batcert.physics.balls.fit_checks import COR_KINDS, STIFFNESS_KINDS, FitError, check_tests
 from batcert.physics.balls.fit_coordinates import SLOPE, bounds, law_of, theta_of
 from batcert.physics.balls.fit_starts import starts
 from batcert.physics.balls.impact1d import body_impact, contact_time_estimate
 from batcert.physics.balls.viscoelastic import TwoTimeViscoelastic, Viscoelastic, ViscoelasticMarch
 
 KINDS = ("cor", "cylinder_cor", "peak_force", "collision_time", "contact_time", "compression")
-COR_KINDS = ("cor", "cylinder_cor")  # what a livelier or deader lot moves
-STIFFNESS_KINDS = ("peak_force", "collision_time", "contact_time", "compression")
 MAX_RESIDUAL = 3.0  # a test missed by more than this many standard uncertainties refuses the fit
 FIT_STEPS = 150  # integration steps per contact time while fitting (COR to about 3e-6)
 # plausible ranges: a fit at their edge is refused (the data do not hold the parameter)
@@ -56,16 +55,6 @@ PARAMETERS = Viscoelastic.PARAMETERS  # the one-time law's (the default law of a
 # the laws a ball's tests can be fitted to (each lists its PARAMETERS and their COORDINATES)
 FITTED: dict[str, type[Viscoelastic]] = {Viscoelastic.name: Viscoelastic,
                                           TwoTimeViscoelastic.name: TwoTimeViscoelastic}
-
-
-class FitError(ValueError):
-    """The tests cannot give a trustworthy law; ``test`` is the index of the test at fault
-    (None when the fit as a whole is), so that the message can point at its line."""
-
-    def __init__(self, message: str, test: int | None = None, converged: bool = True) -> None:
-        super().__init__(message)
-        self.test = test
-        self.converged = converged  # False: no law was found (within the fit's budget)
 
 
 @dataclass(frozen=True)
@@ -248,7 +237,7 @@ def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: 
     (:data:`~batcert.physics.balls.fit_budget.MAX_EVALUATIONS` unless given)."""
     cls = FITTED[law]
     tests = tuple(tests)
-    _check_tests(tests, fixed, cls)
+    check_tests(tests, fixed, cls)
     n_free = len(cls.PARAMETERS) - len(fixed)
     value = np.array([t.value for t in tests])
     sigma = np.array([t.uncertainty for t in tests])
@@ -284,27 +273,6 @@ def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: 
     model = value + r * sigma
     return BallFit(fitted, tests, tuple(float(x) for x in model), tuple(float(x) for x in r),
                    chi2, dof, uncertainty, direction, tuple(k for k, _ in fixed))
-
-
-def _check_tests(tests: tuple[BallTest, ...], fixed: Fixed, cls: type[Viscoelastic]) -> None:
-    """FitError when ``tests`` cannot hold the free parameters of ``cls`` (too few, no COR or
-    no stiffness-bearing test, a test without its uncertainty)."""
-    kinds = {t.kind for t in tests}
-    n_free = len(cls.PARAMETERS) - len(fixed)
-    if len(tests) < n_free:
-        held = f" ({len(fixed)} held)" if fixed else ""
-        raise FitError(f"the {cls.name} ball has {n_free} parameters to fit{held} and the "
-                       f"file gives {len(tests)} ball tests: give at least {n_free} (COR at "
-                       "several speeds and a contact time, peak force or compression), or "
-                       "hold more of the law's parameters")
-    if not kinds & set(COR_KINDS) or not kinds & set(STIFFNESS_KINDS):
-        raise FitError("the viscoelastic ball needs the COR at two or more speeds and at least "
-                       "one test that measures its stiffness (collision_time, contact_time, "
-                       "peak_force or compression)")
-    sigma = np.array([t.uncertainty for t in tests])
-    if not np.all(sigma > 0):
-        raise FitError("every ball test of a fit needs its standard uncertainty",
-                       int(np.argmin(sigma > 0)))
 
 
 def _refuse_untrusted(tests, mass, radius, r, fixed, cls, fitted, theta, budget: Budget) -> None:

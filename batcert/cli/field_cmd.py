@@ -28,6 +28,17 @@ Exit codes:
   3  invalid input (a spec file has errors; nothing is written)
 """ + ENVIRONMENT_EXIT_CODES
 
+class _FiniteRange(click.FloatRange):
+    """A number in a range, never NaN (which no comparison refuses)."""
+
+    def convert(self, value, param, ctx):
+        number = super().convert(value, param, ctx)
+        if math.isnan(number):
+            self.fail(f"{value!r} is not a number in the range {self._describe_range()}", param,
+                      ctx)
+        return number
+
+
 _TEMPERATURE = {"f": lambda t: (t - 32) * 5 / 9 + 273.15, "c": lambda t: t + 273.15,
                 "k": lambda t: t}
 
@@ -80,11 +91,11 @@ Examples:
 @click.option("--pitch", "pitch_speed", default=None, callback=_quantity("speed", 0.0, 60.0),
               help="Pitch speed, e.g. 85mph [default: each batter profile's].")
 @click.option("--launch-angle", default=28.0, show_default=True,
-              type=click.FloatRange(-10.0, 60.0), help="Launch angle [deg].")
-@click.option("--backspin", default=None, type=click.FloatRange(-5000.0, 6000.0),
+              type=_FiniteRange(-10.0, 60.0), help="Launch angle [deg].")
+@click.option("--backspin", default=None, type=_FiniteRange(-5000.0, 6000.0),
               help="Backspin [rpm] [default: the trajectory calculator's for the launch "
                    "angle].")
-@click.option("--sidespin", default=None, type=click.FloatRange(-5000.0, 5000.0),
+@click.option("--sidespin", default=None, type=_FiniteRange(-5000.0, 5000.0),
               help="Sidespin [rpm] [default: the calculator's, -849 rpm].")
 @click.option("--elevation", default="0 ft", show_default=True,
               callback=_quantity("length", -500.0, 5000.0), help="Field elevation.")

@@ -168,6 +168,10 @@ def test_unknown_batter_is_a_usage_error(batcert_cli, tmp_path):
     (("--pitch", "80"), "a unit is required"),
     (("--engine", "warp"), "'warp' is not one of"),
     (("--reference", "ash-3"), "did you mean 'ash-34'?"),
+    # issue 40 item 6e: NaN passed click's range and flew until a ValueError traceback
+    (("--launch-angle", "nan"), "'nan' is not a number in the range -10.0<=x<=60.0"),
+    (("--backspin", "nan"), "'nan' is not a number in the range"),
+    (("--sidespin", "NaN"), "'NaN' is not a number in the range"),
 ])
 def test_bad_values_are_usage_errors(batcert_cli, tmp_path, args, message):
     out = tmp_path / "out"

@@ -49,6 +49,14 @@ def batter_names(values: Sequence[str]) -> list[str]:
     return out
 
 
+def _check_finite(settings: FieldSettings) -> None:
+    """UsageProblem at a launch, spin or air setting that is not a finite number (a NaN angle
+    flew until the trajectory's time limit and ended in a traceback)."""
+    for name, value in vars(settings).items():
+        if value is not None and not math.isfinite(value):
+            raise UsageProblem(f"{name} must be a finite number, got {value!r}")
+
+
 def _launch(settings: FieldSettings) -> tuple[Launch, str]:
     back, side = (float(x) for x in default_spin(settings.launch_angle))
     given = settings.backspin is not None or settings.sidespin is not None
@@ -81,6 +89,7 @@ def run_field(bats: Sequence[str], batters: Sequence[str] = (), reference: str |
     if not bats:
         raise UsageProblem("give at least one bat (a shipped name such as aluminium-34, or a "
                            "bat YAML path)")
+    _check_finite(settings)
     paths: list[Path] = []
     for value in bats:  # a bat given twice, or also as the reference, is built and swung once
         path = resolve("bat", value)

@@ -80,6 +80,26 @@ def default_shear_correction(construction: str, poisson_ratio: float) -> float:
     return 2 * (1 + nu) / (4 + 3 * nu)
 
 
+def _span_index(spans: tuple[tuple[float, float, WallStack], ...], mid: np.ndarray,
+                length: float, slice_length: float) -> np.ndarray:
+    """The span of each slice (the one that holds its centre ``mid``), -1 for none; ModelError
+    at a span that holds no slice's centre (narrower than a slice: its wall would not be in
+    the model)."""
+    index = np.full(mid.size, -1)
+    for k, (start, end, _) in enumerate(spans):
+        at = (mid >= start) & ((mid < end) | (end >= length))
+        if not np.any(at):
+            raise ModelError(f"layup[{k}].span", f"the span ({1e3 * (end - start):.3g} mm, "
+                             f"{100 * start:.2f} to {100 * end:.2f} cm from the knob) holds no "
+                             f"slice's centre: the model slices the bat every "
+                             f"{1e3 * slice_length:.1f} mm and gives each slice the wall of the "
+                             "span that holds its centre, so this span's wall would not be in "
+                             "the model; widen it to a slice or more, or join it to its "
+                             "neighbour")
+        index[at] = k
+    return index
+
+
 def build_geometry(name: str, construction: str, length: float, profile_z, profile_d,
                    material: Material, wall_z=None, wall_t=None, knob_mass: float = 0.0,
                    end_cap_mass: float = 0.0, shear_correction: float | None = None,
@@ -97,9 +117,7 @@ def build_geometry(name: str, construction: str, length: float, profile_z, profi
     edges = np.linspace(0.0, length, n + 1)
     mid = 0.5 * (edges[1:] + edges[:-1])
     outer = np.interp(mid, profile_z, profile_d)
-    index = np.full(n, -1)
-    for k, (start, end, _) in enumerate(spans):
-        index[(mid >= start) & ((mid < end) | (end >= length))] = k
+    index = _span_index(spans, mid, length, edges[1] - edges[0])
     if construction == "hollow":
         wall = np.interp(mid, wall_z, wall_t) if wall_z is not None else np.zeros(n)
         for k, (_, _, stack) in enumerate(spans):

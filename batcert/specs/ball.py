@@ -382,5 +382,20 @@ def _fitted(path, data, tests, mass: float, radius: float, held=(),
         if exc.test is not None:
             key, p = tests[exc.test]
             raise InputError([Problem(str(path), p.line, key, str(exc))]) from None
+        if exc.parameter is not None:
+            line = data["contact"].key_pos.get(exc.parameter, (data.line, None))[0]
+            raise InputError([Problem(str(path), line, f"contact.{exc.parameter}",
+                                      str(exc))]) from None
         line = data["contact"].key_pos.get("model", (data.line, None))[0]
-        raise InputError([Problem(str(path), line, "contact.model", str(exc))]) from None
+        message = str(exc) if exc.converged else f"{exc} ({_lines_of(tests)})"
+        raise InputError([Problem(str(path), line, "contact.model", message)]) from None
+
+
+def _lines_of(tests) -> str:
+    """Where the file's tests are, by key: ``cor at lines 6-9, collision_time at line 12``."""
+    where: dict[str, list[int]] = {}
+    for key, p in tests:
+        where.setdefault(key, []).extend([p.line] if p.line else [])
+    return ", ".join(f"{k} at line{'s' if min(v) < max(v) else ''} "
+                     f"{'-'.join(str(x) for x in sorted({min(v), max(v)}))}" if v else k
+                     for k, v in where.items())

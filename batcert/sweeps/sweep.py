@@ -132,6 +132,29 @@ def _failed(index: int, reason: str) -> Row:
     return {"index": index, "error": reason}
 
 
+def whole_row(row: Any, index: int, conditions: tuple[str, ...]) -> bool:
+    """Whether ``row`` (read back from a sweep's journal) is a whole row of variant ``index``
+    as :func:`run_cases` makes it, under a protocol of ``conditions``: a failed variant's reason,
+    or every field :func:`collect` reads, of its kind."""
+    def number(x: Any) -> bool:
+        return x is None or (isinstance(x, (int, float)) and not isinstance(x, bool))
+
+    if not isinstance(row, dict) or row.get("index") != index or isinstance(row["index"], bool):
+        return False
+    if "error" not in row or row["error"] is not None:
+        return isinstance(row.get("error"), str)
+    got = row.get("conditions")
+    return (all(number(row.get(k, "")) for k in VARIANT_FIELDS)
+            and isinstance(row.get("verdict", ""), (str, type(None)))
+            and isinstance(row.get("settings"), dict)
+            and isinstance(row.get("warnings"), list)
+            and all(isinstance(w, str) for w in row["warnings"])
+            and isinstance(got, dict)
+            and all(isinstance(got.get(c), dict) for c in conditions)
+            and all(number(v) or isinstance(v, bool) for c in conditions
+                    for v in got[c].values()))
+
+
 def _reason(exc: InputError) -> str:
     return "; ".join(p.message for p in exc.problems)
 

@@ -168,6 +168,11 @@ def test_unknown_batter_is_a_usage_error(batcert_cli, tmp_path):
     (("--pitch", "80"), "a unit is required"),
     (("--engine", "warp"), "'warp' is not one of"),
     (("--reference", "ash-3"), "did you mean 'ash-34'?"),
+    # issue 40 item 6e: NaN passed click's range and flew until a ValueError traceback
+    # (read by batcert.arguments, as the library reads them)
+    (("--launch-angle", "nan"), "launch-angle': must be a finite number, got nan"),
+    (("--backspin", "nan"), "backspin': must be a finite number, got nan"),
+    (("--sidespin", "NaN"), "sidespin': must be a finite number, got nan"),
 ])
 def test_bad_values_are_usage_errors(batcert_cli, tmp_path, args, message):
     out = tmp_path / "out"

@@ -80,3 +80,16 @@ def test_launch_angle_sets_the_default_spin():
                   FieldSettings(launch_angle=math.radians(25.0)))
     assert r.backspin * 30 / math.pi == pytest.approx(-763 + 120 * 25)
     assert r.sidespin * 30 / math.pi == pytest.approx(-849)
+
+
+@pytest.mark.parametrize("setting", ["launch_angle", "backspin", "sidespin", "temperature",
+                                     "elevation", "pitch_speed"])
+@pytest.mark.parametrize("value", [math.nan, math.inf])
+def test_a_launch_or_air_that_is_not_a_number_is_refused(setting, value):
+    # issue 40 item 6e: a NaN launch angle or spin flew until a ValueError traceback (the API
+    # too): an impossible request, named, before any bat is loaded
+    from batcert.errors import UsageProblem
+
+    with pytest.raises(UsageProblem, match=f"^{setting} must be a finite number, got {value}$"):
+        run_field(["ash-34"], ["pro"], engine="rigid",
+                  settings=FieldSettings(**{setting: value}))

@@ -94,3 +94,76 @@ def test_two_sliding_walls_are_livelier_and_ring_lower_than_one_of_the_same_weig
     one, two = (run_protocol(b, ncaa.protocol, ncaa.ball, engine, STAMP).value
                 for b in (single, double))
     assert two > one
+
+
+# -- a break-in of many passes (issue 40 item 6b) ---------------------------------------------
+# a protocol may allow 10,000 passes of 0.01 % damage each: read one by one that took minutes
+# (a reading is about 0.1 s); after the first ONE_BY_ONE passes, the pass that reaches the target
+# is found by bisection, and the outcome says so
+
+
+def _linear_barrel(monkeypatch, loss_at_full_damage: float):
+    """A stand-in bat whose compression falls linearly with the damage (1000 N new): the model
+    is its damage, so that a test of the procedure does not wait for the shell."""
+    from types import SimpleNamespace
+
+    from batcert.results.run import CompressionResult
+
+    def compression(model, test):
+        damage = model if isinstance(model, float) else 0.0
+        force = 1000.0 * (1.0 - loss_at_full_damage * damage)
+        return CompressionResult(0.15, 0.025, 0.001, force, force / 0.001, None, None, None)
+    monkeypatch.setattr(abi, "compression", compression)
+    monkeypatch.setattr(abi, "breaks_in", lambda model, z: True)
+    monkeypatch.setattr(abi, "broken_in_model", lambda model, damage: damage)
+    return SimpleNamespace(wall_damage=0.0, length=0.86)
+
+
+def _first_pass_one_by_one(rule, loss_at_full_damage: float) -> int:
+    n = 1
+    while 1000.0 * (1.0 - loss_at_full_damage * n * rule.damage_per_pass) \
+            > (1.0 - rule.target_drop) * 1000.0:
+        n += 1
+    return n
+
+
+@pytest.mark.parametrize("damage_per_pass, loss", [(1e-4, 0.12), (3e-4, 0.07), (1e-4, 0.5)])
+def test_a_long_break_in_finds_the_pass_that_reaches_the_target_by_bisection(
+        ncaa, monkeypatch, damage_per_pass, loss):
+    model = _linear_barrel(monkeypatch, loss)
+    rule = replace(ncaa.protocol.break_in, damage_per_pass=damage_per_pass, max_passes=10000)
+    emulated = abi.emulate(model, ncaa.protocol.barrel_compression, rule)
+    steps = emulated.record.steps
+    n = _first_pass_one_by_one(rule, loss)
+    assert n > abi.ONE_BY_ONE
+    assert [s.passes for s in steps[:abi.ONE_BY_ONE + 1]] == list(range(abi.ONE_BY_ONE + 1))
+    assert steps[-1].passes == n and steps[-2].passes == n - 1  # the pass before misses it
+    assert steps[-1].drop >= rule.target_drop > steps[-2].drop
+    assert len(steps) < abi.ONE_BY_ONE + 20  # a few readings after the first hundred
+    assert emulated.model == pytest.approx(n * damage_per_pass)
+    assert emulated.record.outcome.startswith(f"rolled {n} passes until the compression fell")
+    assert "then the first pass to reach the target found by bisection" in emulated.record.outcome
+    assert "the protocol's limit 10000 passes" in emulated.record.outcome
+
+
+def test_a_long_break_in_that_misses_the_target_stops_at_the_protocols_limit(ncaa, monkeypatch):
+    model = _linear_barrel(monkeypatch, 0.12)  # 5 % at 4167 passes of 0.01 %
+    rule = replace(ncaa.protocol.break_in, damage_per_pass=1e-4, max_passes=3000)
+    calls = []
+    monkeypatch.setattr(abi, "broken_in_model", lambda model, damage: calls.append(damage) or damage)
+    with pytest.raises(ValueError, match=r"by 5 % within 3000 passes \(last 3\.60 %\)"):
+        abi.emulate(model, ncaa.protocol.barrel_compression, rule)
+    assert len(calls) == abi.ONE_BY_ONE + 1  # the first hundred, then the last allowed
+
+
+def test_a_long_break_in_of_a_shipped_composite_bat(ncaa, monkeypatch):
+    # the shell itself (a few bisection readings after three passes read one by one)
+    monkeypatch.setattr(abi, "ONE_BY_ONE", 3)
+    rule = replace(ncaa.protocol.break_in, damage_per_pass=1e-4, max_passes=10000)
+    b = abi.emulate(_built("composite-bbcor-34").model, ncaa.protocol.barrel_compression,
+                    rule).record
+    assert b.applies and b.complete
+    assert b.steps[-1].drop >= rule.target_drop > b.steps[-2].drop
+    assert b.steps[-2].passes == b.steps[-1].passes - 1 > 3
+    forces = [s.force for s in b.steps]
+    assert all(later < earlier for earlier, later in zip(forces, forces[1:], strict=False))

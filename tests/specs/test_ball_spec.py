@@ -285,3 +285,25 @@ def test_hysteresis_ball_still_reads_its_cor_points(tmp_path):
     spec = load_ball(write(tmp_path, text))
     assert spec.fit is None
     assert spec.model.law == PowerLawHysteresis(6.53e7, 1.84, (10.0, 50.0), (0.60, 0.50))
+
+
+def test_fit_that_does_not_converge_names_the_file_and_its_tests(tmp_path, monkeypatch):
+    # issue 40 item 6a: twenty contradictory tests (two balls interleaved, tiny uncertainties)
+    # took minutes; the fit stops at its budget (here a small one, to be quick) and says so at
+    # the law's line, naming where the tests are
+    from batcert.physics.balls import fit_budget
+
+    monkeypatch.setattr(fit_budget, "MAX_EVALUATIONS", 300)
+    cor = "".join(f"  - [{5 + 3 * i} m/s, {0.7 if i % 2 else 0.4} +/- 0.001]\n" for i in range(10))
+    times = "".join(f"  - [{5 + 3 * i} m/s, {2.0 if i % 2 else 0.5} ms +/- 0.01 ms]\n"
+                    for i in range(10))
+    text = HEAD + "cor:\n" + cor + "collision_time:\n" + times + "contact:\n  model: viscoelastic\n"
+    path = write(tmp_path, text)
+    with pytest.raises(InputError) as exc:
+        load_ball(path)
+    [problem] = exc.value.problems
+    assert (problem.file, problem.line, problem.field) == (str(path), 27, "contact.model")
+    assert problem.message == (
+        "the fit of the viscoelastic ball to its 20 tests did not converge within its budget of "
+        "300 test evaluations: the tests contradict one another (not of one ball), or an "
+        "uncertainty is too small (cor at lines 5-14, collision_time at lines 16-25)")

@@ -59,6 +59,11 @@ CASES: dict[str, list[Expect]] = {
     ],
     "bat-layup-on-solid.yaml": [Expect(6, "layup", "only a hollow bat has a wall to lay up")],
     "bat-layup-overlap.yaml": [Expect(10, "layup[1].span", "overlaps span 0")],
+    # issue 40 item 6c: a span that holds no slice's centre was an IndexError in the model
+    "bat-layup-span-narrower-than-a-slice.yaml": [
+        Expect(10, "layup[1].span", "the span (0.254 mm, 50.80 to 50.83 cm from the knob) holds "
+                                    "no slice's centre: the model slices the bat every 9.9 mm"),
+    ],
     "protocol-break-in-without-compression.yaml": [
         Expect(14, "break_in", "the break-in reads the barrel's compression: add "
                                "`barrel_compression`"),
@@ -157,6 +162,11 @@ CASES: dict[str, list[Expect]] = {
     ],
     # --- ball files
     "ball-cor-out-of-range.yaml": [Expect(7, "cor[1]", "COR must be a number in (0, 1], got 1.2")],
+    # issue 40 item 6d: a ZeroDivisionError in the fit's coordinates
+    "ball-relaxed-fraction-1-held.yaml": [
+        Expect(12, "contact.relaxed_fraction", "relaxed_fraction held at 1: the fit needs it "
+                                               "strictly between 0 and 1"),
+    ],
     "ball-speeds-not-increasing.yaml": [
         Expect(7, "cor[1]", "impact speeds must increase; 10 m/s follows 50 m/s"),
     ],

@@ -326,6 +326,9 @@ def _journal_of(tmp_path, vary="pitch_speed=40m/s:60m/s:9"):
     "header cut",  # the first line damaged: it can no longer show which sweep it holds
     "middle line",  # a damaged line that is not the last one cut short
     "not an object", "no rows", "chunk as text", "a second, different copy",
+    # issue 40 item 6f: a short chunk was a KeyError, a deeply nested line a RecursionError
+    "short chunk", "a row without its fields", "a row of another variant", "a value as text",
+    "a chunk the sweep lacks", "nested too deep",
 ])
 def test_a_journal_that_cannot_prove_its_rows_is_refused(tmp_path, counted, damage):
     # issue 24: a journal whose first line was damaged used to skip the check that it belongs
@@ -339,6 +342,16 @@ def test_a_journal_that_cannot_prove_its_rows_is_refused(tmp_path, counted, dama
         "no rows": [lines[0], json.dumps({**entry, "rows": None}), *lines[2:]],
         "chunk as text": [lines[0], json.dumps({**entry, "chunk": "0"}), *lines[2:]],
         "a second, different copy": [*lines, json.dumps({**entry, "rows": entry["rows"][:1]})],
+        "short chunk": [lines[0], json.dumps({**entry, "rows": entry["rows"][:1]}), *lines[2:]],
+        "a row without its fields": [lines[0], json.dumps(
+            {**entry, "rows": [{"index": 0}, *entry["rows"][1:]]}), *lines[2:]],
+        "a row of another variant": [lines[0], json.dumps(
+            {**entry, "rows": [entry["rows"][1], *entry["rows"][1:]]}), *lines[2:]],
+        "a value as text": [lines[0], json.dumps(
+            {**entry, "rows": [{**entry["rows"][0], "value": "0.5"}, *entry["rows"][1:]]}),
+            *lines[2:]],
+        "a chunk the sweep lacks": [*lines, json.dumps({**entry, "chunk": 7})],
+        "nested too deep": [lines[0], "[" * 100_000 + "]" * 100_000, *lines[2:]],
     }[damage]
     journal.write_text("\n".join(broken) + "\n")
     counted.clear()

@@ -37,14 +37,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from batcert.physics.balls import footprint
+from batcert.physics.balls.fit_budget import Budget, Exhausted
+from batcert.physics.balls.fit_checks import COR_KINDS, STIFFNESS_KINDS, FitError, check_tests
 from batcert.physics.balls.fit_coordinates import SLOPE, bounds, law_of, theta_of
 from batcert.physics.balls.fit_starts import starts
 from batcert.physics.balls.impact1d import body_impact, contact_time_estimate
 from batcert.physics.balls.viscoelastic import TwoTimeViscoelastic, Viscoelastic, ViscoelasticMarch
 
 KINDS = ("cor", "cylinder_cor", "peak_force", "collision_time", "contact_time", "compression")
-COR_KINDS = ("cor", "cylinder_cor")  # what a livelier or deader lot moves
-STIFFNESS_KINDS = ("peak_force", "collision_time", "contact_time", "compression")
 MAX_RESIDUAL = 3.0  # a test missed by more than this many standard uncertainties refuses the fit
 FIT_STEPS = 150  # integration steps per contact time while fitting (COR to about 3e-6)
 # plausible ranges: a fit at their edge is refused (the data do not hold the parameter)
@@ -55,15 +55,6 @@ PARAMETERS = Viscoelastic.PARAMETERS  # the one-time law's (the default law of a
 # the laws a ball's tests can be fitted to (each lists its PARAMETERS and their COORDINATES)
 FITTED: dict[str, type[Viscoelastic]] = {Viscoelastic.name: Viscoelastic,
                                           TwoTimeViscoelastic.name: TwoTimeViscoelastic}
-
-
-class FitError(ValueError):
-    """The tests cannot give a trustworthy law; ``test`` is the index of the test at fault
-    (None when the fit as a whole is), so that the message can point at its line."""
-
-    def __init__(self, message: str, test: int | None = None) -> None:
-        super().__init__(message)
-        self.test = test
 
 
 @dataclass(frozen=True)
@@ -162,16 +153,19 @@ def test_values(law, tests: tuple[BallTest, ...], mass: float, radius: float) ->
 
 
 def _solve(tests: tuple[BallTest, ...], mass: float, radius: float, fixed: Fixed = (),
-           cls: type[Viscoelastic] = Viscoelastic, first: np.ndarray | None = None):
+           cls: type[Viscoelastic] = Viscoelastic, first: np.ndarray | None = None,
+           budget: Budget | None = None):
     """The least-squares solution (module notes) over the parameters of ``cls`` not in
     ``fixed``: ``(theta, residuals, jacobian)``, ``theta`` all the coordinates, the Jacobian over
     the free ones; FitError when no start converges. ``first``: a start to try before those
-    read off the data (a neighbouring fit's coordinates)."""
+    read off the data (a neighbouring fit's coordinates). ``budget``: the test evaluations it
+    may make (:class:`~batcert.physics.balls.fit_budget.Exhausted` when spent)."""
     from scipy.optimize import least_squares  # lazy: only a fit needs it
 
     value = np.array([t.value for t in tests])
     sigma = np.array([t.uncertainty for t in tests])
     base, free = _split(fixed, cls)
+    budget = Budget() if budget is None else budget
 
     def full(x) -> np.ndarray:
         theta = base.copy()
@@ -180,6 +174,7 @@ def _solve(tests: tuple[BallTest, ...], mass: float, radius: float, fixed: Fixed
 
     def residuals_of(xs) -> np.ndarray:
         laws = [law_of(full(x), cls) for x in xs]
+        budget.spend(len(laws) * len(tests))
         return (predict(laws, tests, mass, radius) - value) / sigma
 
     def fun(x):
@@ -233,32 +228,27 @@ def _split(fixed: Fixed, cls: type[Viscoelastic] = Viscoelastic) -> tuple[np.nda
 
 
 def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: float,
-             fixed: Fixed = (), law: str = Viscoelastic.name) -> BallFit:
+             fixed: Fixed = (), law: str = Viscoelastic.name,
+             evaluations: int | None = None) -> BallFit:
     """Fit the viscoelastic law ``law`` (a name in :data:`FITTED`) to ``tests`` of a ball of
     ``mass`` [kg] and ``radius`` [m] (module notes), the parameters in ``fixed`` held at their
     given values (a ball known only by its marks: module notes); :class:`FitError` when the
-    result cannot be trusted."""
+    result cannot be trusted, or when no law is found within ``evaluations`` test evaluations
+    (:data:`~batcert.physics.balls.fit_budget.MAX_EVALUATIONS` unless given)."""
     cls = FITTED[law]
     tests = tuple(tests)
-    kinds = {t.kind for t in tests}
+    check_tests(tests, fixed, cls)
     n_free = len(cls.PARAMETERS) - len(fixed)
-    if len(tests) < n_free:
-        held = f" ({len(fixed)} held)" if fixed else ""
-        raise FitError(f"the {cls.name} ball has {n_free} parameters to fit{held} and the "
-                       f"file gives {len(tests)} ball tests: give at least {n_free} (COR at "
-                       "several speeds and a contact time, peak force or compression), or "
-                       "hold more of the law's parameters")
-    if not kinds & set(COR_KINDS) or not kinds & set(STIFFNESS_KINDS):
-        raise FitError("the viscoelastic ball needs the COR at two or more speeds and at least "
-                       "one test that measures its stiffness (collision_time, contact_time, "
-                       "peak_force or compression)")
     value = np.array([t.value for t in tests])
     sigma = np.array([t.uncertainty for t in tests])
-    if not np.all(sigma > 0):
-        raise FitError("every ball test of a fit needs its standard uncertainty",
-                       int(np.argmin(sigma > 0)))
-
-    theta, r, jm = _solve(tests, mass, radius, fixed, cls)
+    budget = Budget(evaluations)
+    try:
+        theta, r, jm = _solve(tests, mass, radius, fixed, cls, budget=budget)
+    except Exhausted:
+        raise FitError(f"the fit of the {cls.name} ball to its {len(tests)} tests did not "
+                       f"converge within its budget of {budget.limit:,} test evaluations: the "
+                       "tests contradict one another (not of one ball), or an uncertainty is "
+                       "too small", converged=False) from None
     fitted = replace(law_of(theta, cls), **dict(fixed))  # the held values exactly
     dof = len(tests) - n_free
     chi2 = float(r @ r)
@@ -268,7 +258,7 @@ def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: 
                        "(the fit is singular): add a test of another kind or speed (COR at a "
                        "third speed, a contact or collision time, a peak force, a compression)")
     cov = np.linalg.inv(jtj) * max(1.0, chi2 / dof if dof > 0 else 1.0)
-    _refuse_untrusted(tests, mass, radius, r, fixed, cls, fitted, theta)
+    _refuse_untrusted(tests, mass, radius, r, fixed, cls, fitted, theta, budget)
     # parameter uncertainties, in SI (through the transforms)
     _, free = _split(fixed, cls)
     su = np.zeros(len(cls.PARAMETERS))
@@ -285,36 +275,45 @@ def fit_ball(tests: tuple[BallTest, ...] | list[BallTest], mass: float, radius: 
                    chi2, dof, uncertainty, direction, tuple(k for k, _ in fixed))
 
 
-def _refuse_untrusted(tests, mass, radius, r, fixed, cls, fitted, theta) -> None:
+def _refuse_untrusted(tests, mass, radius, r, fixed, cls, fitted, theta, budget: Budget) -> None:
     """FitError when a parameter lands on the edge of its plausible range or a test is missed
     by more than :data:`MAX_RESIDUAL`; a test out of line (which can also push a parameter to
-    its edge: a COR of 0.9 at 58 m/s drives the fast branch's share to 0.01) is named."""
+    its edge: a COR of 0.9 at 58 m/s drives the fast branch's share to 0.01) is named
+    (:func:`_blame`, within the fit's ``budget``)."""
     at_edge = _at_bounds(fitted)
     if np.max(np.abs(r)) > MAX_RESIDUAL:
-        worst, miss, model_value = _blame(tests, mass, radius, r, fixed, cls, theta)
+        worst, miss, model_value, cut = _blame(tests, mass, radius, r, fixed, cls, theta, budget)
         edge = (f"the fit puts the viscoelastic ball's {at_edge} at the edge of its plausible "
                 "range, and the law" if at_edge else "the viscoelastic law")
-        raise FitError(f"{edge} fitted to the other tests misses this one by "
-                       f"{miss:+.1f} standard uncertainties (model "
+        which = "fitted to the other tests misses this one"
+        if cut:
+            n_missed = int(np.sum(np.abs(r) > MAX_RESIDUAL))
+            which = (f"fitted to all {len(tests)} tests misses {n_missed} of them by more than "
+                     f"{MAX_RESIDUAL:g} standard uncertainties, this one most,")
+        note = (f" (the search for the test at fault stopped at the fit's budget of "
+                f"{budget.limit:,} test evaluations)" if cut else "")
+        raise FitError(f"{edge} {which} by {miss:+.1f} standard uncertainties (model "
                        f"{_show(tests[worst], model_value)} against "
                        f"{_show(tests[worst], tests[worst].value)}): the tests are not of one "
-                       "ball, or an uncertainty is too small", worst)
+                       f"ball, or an uncertainty is too small{note}", worst)
     if at_edge:
         raise FitError(f"the fit puts the viscoelastic ball's {at_edge} at the edge of its "
                        "plausible range: the tests do not hold it (or are not of one ball)")
 
 
 def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarray,
-           fixed: Fixed = (), cls: type[Viscoelastic] = Viscoelastic,
-           near: np.ndarray | None = None) -> tuple[int, float, float]:
-    """The test at fault in a refused fit, ``(index, miss, model value)``: the one without
+           fixed: Fixed, cls: type[Viscoelastic],
+           near: np.ndarray | None, budget: Budget) -> tuple[int, float, float, bool]:
+    """The test at fault in a refused fit, ``(index, miss, model value, cut)``: the one without
     which the others fit best (the smallest chi-square of the fit to the rest), its miss being
     how far that fit is from it, in its standard uncertainties. Where the rest fit equally well
     (with as many tests as parameters they fit exactly), the one missed by most in the standard
     uncertainty of the miss (its own and the prediction's: its externally studentised residual,
     so that a test the others hardly constrain is not blamed for their extrapolation). A test
     without which the rest cannot be fitted (too few, or no COR or stiffness-bearing test left)
-    is not a candidate; with no candidate, the full fit's largest residual."""
+    is not a candidate; with no candidate, the full fit's largest residual. ``cut``: the search
+    spent ``budget`` (test evaluations) before it ended, and the full fit's largest residual is
+    returned."""
     k = int(np.argmax(np.abs(r)))
     best = (k, float(r[k]), tests[k].value + float(r[k]) * tests[k].uncertainty)
     score = np.inf
@@ -327,12 +326,15 @@ def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarra
             continue
         try:
             # from the full fit's coordinates: one start usually serves (a leave-one-out refit)
-            theta, r_rest, jm = _solve(rest, mass, radius, fixed, cls, near)
+            theta, r_rest, jm = _solve(rest, mass, radius, fixed, cls, near, budget)
             cov = np.zeros((n, n))
             free = _split(fixed, cls)[1]
             cov[np.ix_(free, free)] = np.linalg.inv(jm.T @ jm)
+            budget.spend(n + 1)  # the test's value and its gradient, below
         except (FitError, np.linalg.LinAlgError):
             continue
+        except Exhausted:
+            return (k, float(r[k]), tests[k].value + float(r[k]) * tests[k].uncertainty, True)
         steps = 1e-3 * np.eye(n)
         values = [float(test_values(law_of(th, cls), (test,), mass, radius)[0])
                   for th in (theta, *(theta + d for d in steps))]
@@ -343,7 +345,7 @@ def _blame(tests: tuple[BallTest, ...], mass: float, radius: float, r: np.ndarra
         if rest_chi2 - 1e-6 * studentised**2 < score:
             score = rest_chi2 - 1e-6 * studentised**2
             best = (i, (values[0] - test.value) / test.uncertainty, values[0])
-    return best
+    return (*best, False)
 
 
 def _at_bounds(law: Viscoelastic) -> str | None:

@@ -175,6 +175,14 @@ def test_fit_refuses_a_test_without_uncertainty():
     assert exc.value.test == 6
 
 
+def test_fit_refuses_a_relaxed_fraction_held_at_1():
+    # issue 40 item 6d: a ZeroDivisionError in the fit's coordinates (logit of 1)
+    tests = synthetic_tests(exact_values)
+    with pytest.raises(FitError, match="relaxed_fraction held at 1: the fit needs it") as exc:
+        fit_ball(tests, MASS, RADIUS, fixed=(("relaxed_fraction", 1.0),))
+    assert (exc.value.test, exc.value.parameter) == (None, "relaxed_fraction")
+
+
 @pytest.mark.slow  # leave-one-out refits of the ball, 10-20 s
 @pytest.mark.parametrize("index", [1, 3])  # the COR at 10 m/s, at 58 m/s
 def test_fit_refuses_a_test_it_misses(index):

@@ -18,6 +18,7 @@ from collections.abc import Sequence
 from functools import lru_cache
 from typing import Any
 
+from batcert.console.wrap import wrap_parts, wrap_text
 from batcert.reports.table import Badge, Table
 
 STYLES = {"pass": "green", "fail": "red", "warn": "yellow", "na": "dim", "info": "bold"}
@@ -105,6 +106,12 @@ def _width() -> int:
     return shutil.get_terminal_size((140, 24)).columns
 
 
+def _columns(stderr: bool = False) -> int:
+    """The width lines are laid out to: the terminal's (rich's), else :func:`_width`."""
+    return _console(stderr).width if _terminal(sys.stderr if stderr else sys.stdout) \
+        else _width()
+
+
 # control characters other than tab and line feed (ESC starts a terminal escape sequence, CR
 # overwrites a line): shown as \xNN, so text from a file or the command line cannot drive the
 # terminal
@@ -115,17 +122,22 @@ def _visible(text: str) -> str:
     return _CONTROL.sub(lambda m: f"\\x{ord(m.group()):02x}", text)
 
 
-def _emit(parts: Sequence[tuple[str, str]], stderr: bool = False) -> None:
+def _emit(parts: Sequence[tuple[str, str]], stderr: bool = False, hang: int | None = None) -> None:
     """One line made of (text, style) parts: styled on a terminal, plain otherwise; control
-    characters shown escaped."""
+    characters shown escaped; wrapped to the width with continuation lines indented by ``hang``
+    (default: the line's own indent + 4), so that a long headline or warning reads as one item
+    at 80 columns."""
     parts = [(_visible(text), style) for text, style in parts]
     stream = sys.stderr if stderr else sys.stdout
-    if _terminal(stream):
+    styled = _terminal(stream)
+    lines = wrap_parts(parts, _columns(stderr), hang)
+    if styled:
         from rich.text import Text
 
-        _console(stderr).print(Text.assemble(*parts))
+        for line in lines:
+            _console(stderr).print(Text.assemble(*line))
     else:
-        stream.write("".join(text for text, _ in parts) + "\n")
+        stream.write("".join("".join(text for text, _ in line) + "\n" for line in lines))
 
 
 def print_json(data: Any) -> None:
@@ -146,7 +158,7 @@ def print_results(command: str, results: list[Any]) -> None:
 
 
 def error(message: str) -> None:
-    _emit([("error: ", "bold red"), (message, "")], stderr=True)
+    _emit([("error: ", "bold red"), (message, "")], stderr=True, hang=len("error: "))
 
 
 def input_error(text: str) -> None:
@@ -204,13 +216,15 @@ def _natural_width(t: Table) -> int:
 
 def _plain_table(t: Table, title: str) -> None:
     """Aligned columns (headers over as many lines as they have) when they fit the width;
-    otherwise each row as ``header: value`` lines, so that nothing is ever cut."""
+    otherwise each row as ``header: value`` lines (an empty cell left out), so that nothing is
+    ever cut, long values wrapped under themselves."""
     head_lines = [h.split("\n") for h in t.headers]
     depth = max(len(h) for h in head_lines)
     rows = [[_cell_text(c) for c in row] for row in [*t.rows, *t.foot]]
     widths = _widths(t)
-    lines = [title] if title else []
-    if _natural_width(t) <= _width():
+    width = _columns()
+    lines = wrap_text(title, width) if title else []
+    if _natural_width(t) <= width:
         def line(cells: Sequence[str]) -> str:
             return "  ".join(c.rjust(w) if t.is_numeric(i) else c.ljust(w)
                              for i, (c, w) in enumerate(zip(cells, widths, strict=True))).rstrip()
@@ -218,11 +232,20 @@ def _plain_table(t: Table, title: str) -> None:
         lines += [line(r) for r in rows]
     else:
         heads = [" ".join(h) for h in head_lines]
-        label = max(len(h) for h in heads)
+        label = max(len(h) for h in heads[1:]) if len(heads) > 1 else 0
         for r in rows:
-            lines += [f"{heads[0]}: {r[0]}"] + [f"  {h.ljust(label)}  {c}"
-                                                 for h, c in zip(heads[1:], r[1:], strict=True)]
+            lines += wrap_text(f"{heads[0]}: {r[0]}", width)
+            for h, c in zip(heads[1:], r[1:], strict=True):
+                lines += _labelled(h, label, c, width) if c.strip() else []  # empty: left out
     sys.stdout.write("\n".join(lines) + "\n")
+
+
+def _labelled(key: str, label: int, value: str, width: int, indent: str = "  ") -> list[str]:
+    """``key: value`` in a column of labels ``label`` wide; a long value wraps under itself
+    (or 4 columns in when the labels take half the width)."""
+    hang = len(indent) + label + 2
+    return wrap_text(f"{indent}{key.ljust(label)}  {value}".rstrip(), width,
+                     hang if hang <= width // 2 else len(indent) + 4)
 
 
 def blocks(view: Sequence[tuple[str, Any]]) -> None:
@@ -239,8 +262,11 @@ def kv_table(title: str, rows: Sequence[tuple[str, Any]]) -> None:
     t = Table(["", ""], [[k, v] for k, v in rows])
     if not _terminal(sys.stdout):
         label = max((len(k) for k, _ in rows), default=0)
-        sys.stdout.write("\n".join([title] + [f"{k.ljust(label)}  {_cell_text(v)}"
-                                               for k, v in rows]) + "\n")
+        width = _columns()
+        lines = wrap_text(title, width)
+        for k, v in rows:
+            lines += _labelled(k, label, _cell_text(v), width, indent="")
+        sys.stdout.write("\n".join(lines) + "\n")
         return
     from rich.table import Table as RichTable
     from rich.text import Text
@@ -273,7 +299,7 @@ def warnings(warnings: Sequence[str]) -> None:
     if _Settings.quiet:
         return
     for w in warnings:
-        _emit([("  warning: ", "yellow"), (w, "")], stderr=True)
+        _emit([("  warning: ", "yellow"), (w, "")], stderr=True, hang=len("  warning: "))
 
 
 _warnings = warnings

@@ -69,7 +69,7 @@ def comparison_summary(result, paths: Sequence[Any]) -> None:
                     [[c["id"], c["badge"], c["evidence"]] for c in view["claims"]]),
               "study claims against the model")
     for f in [] if _Settings.quiet else result.findings:
-        _emit([(f"  - {f}", "")])
+        _emit([(f"  - {f}", "")], hang=4)
     _warnings(result.warnings)
     _wrote(paths)
 

@@ -122,15 +122,16 @@ def _visible(text: str) -> str:
     return _CONTROL.sub(lambda m: f"\\x{ord(m.group()):02x}", text)
 
 
-def _emit(parts: Sequence[tuple[str, str]], stderr: bool = False, hang: int | None = None) -> None:
+def _emit(parts: Sequence[tuple[str, str]], stderr: bool = False, hang: int | None = None,
+          wrap: bool = True) -> None:
     """One line made of (text, style) parts: styled on a terminal, plain otherwise; control
     characters shown escaped; wrapped to the width with continuation lines indented by ``hang``
     (default: the line's own indent + 4), so that a long headline or warning reads as one item
-    at 80 columns."""
+    at 80 columns; not with ``wrap=False`` (an error stays one line, for a script to read)."""
     parts = [(_visible(text), style) for text, style in parts]
     stream = sys.stderr if stderr else sys.stdout
     styled = _terminal(stream)
-    lines = wrap_parts(parts, _columns(stderr), hang)
+    lines = wrap_parts(parts, _columns(stderr), hang) if wrap else [parts]
     if styled:
         from rich.text import Text
 
@@ -158,12 +159,12 @@ def print_results(command: str, results: list[Any]) -> None:
 
 
 def error(message: str) -> None:
-    _emit([("error: ", "bold red"), (message, "")], stderr=True, hang=len("error: "))
+    _emit([("error: ", "bold red"), (message, "")], stderr=True, wrap=False)
 
 
 def input_error(text: str) -> None:
     _emit([("invalid input", "bold red")], stderr=True)
-    _emit([(text, "")], stderr=True)
+    _emit([(text, "")], stderr=True, wrap=False)
 
 
 def note(message: str) -> None:
@@ -289,7 +290,7 @@ def _verdict(verdict: str | None) -> tuple[str, str]:
 
 def _wrote(paths: Sequence[Any]) -> None:
     for p in [] if _Settings.quiet else paths:
-        _emit([(f"  wrote {p}", "")])
+        _emit([(f"  wrote {p}", "")], wrap=False)  # the path whole, on its line
 
 
 def warnings(warnings: Sequence[str]) -> None:

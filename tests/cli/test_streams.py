@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 
 import pytest
+from terminal_lines import items
 
 # the rigid engine's BESR maximum lies on the search window's edge: one warning
 RUN = ("run", "ash-34", "-p", "ncaa-besr", "--engine", "rigid", "--no-reports")
@@ -50,7 +51,7 @@ def test_global_flags_work_after_the_subcommand(batcert_cli, flags):
     assert after.exit_code == before.exit_code == 0, after.stderr
     assert after.stdout == before.stdout
     if flags[0] in ("-q", "--quiet"):
-        assert "warning:" not in after.stderr and len(after.stdout.splitlines()) == 2
+        assert "warning:" not in after.stderr and len(items(after.stdout)) == 2
     else:
         assert "batcert: bat" in after.stderr  # the -v log
 

@@ -101,7 +101,8 @@ def field_summary(result, paths: Sequence[Any]) -> None:
 
 def sweep_summary(result, paths: Sequence[Any]) -> None:
     """Terminal view of a sweep or design study: the headline, the table per variant (up to
-    40 rows; the reports hold more) and the design's answer."""
+    40 rows; the reports hold more) and the design's answer; warnings alike but for their
+    numbers grouped (:mod:`batcert.reports.warning_groups`)."""
     from batcert.reports.sweep_view import headline, nominal_sentence, sweep_view
     view = sweep_view(result, charts=False)
     _emit([(view["title"], "bold")])
@@ -114,7 +115,8 @@ def sweep_summary(result, paths: Sequence[Any]) -> None:
         t = Table(t.headers, t.rows[::step], t.numeric)
         _emit([(f"  (every {step}th variant shown; the reports hold all)", "dim")])
     table(t)
-    _warnings(result.warnings)
+    from batcert.reports.warning_groups import grouped_warnings
+    _warnings(grouped_warnings(result))  # alike ones as one line; the result keeps them all
     _wrote(paths)
 
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 
 import pytest
+from terminal_lines import too_wide
 
 WIDTH = 80
 
@@ -15,12 +16,6 @@ WIDTH = 80
 @pytest.fixture(autouse=True)
 def _eighty_columns(monkeypatch):
     monkeypatch.setenv("COLUMNS", str(WIDTH))
-
-
-def too_wide(text: str, width: int = WIDTH) -> list[str]:
-    """The lines of ``text`` wider than ``width`` that are not one unbreakable word."""
-    return [line for line in text.splitlines()
-            if len(line) > width and len(line.split()) > 1]
 
 
 def _assert_fits(res) -> None:
@@ -90,3 +85,49 @@ def test_compare_stacks_its_table_at_80_columns(batcert_cli):
     assert any(line.startswith("  P: Aluminium 34 in (Smith 2001)  ") for line in out)
     # an empty cell (the bats' own metric has no mean of P) is left out, not shown blank
     assert all(line.split(")")[-1].strip() for line in out if line.startswith("  BPF: "))
+
+
+# ---------------------------------------------------------------- (b) a sweep's warnings
+
+
+@pytest.fixture(scope="module")
+def deflection_sweep():
+    """A small rigid sweep whose warnings are replaced by the kind a 15-point wall sweep gives:
+    the same sentence with its numbers, per condition and per variant, as the sweep words
+    them."""
+    from dataclasses import replace
+
+    from batcert.commands.sweep import plan_sweep, run_sweep
+    from batcert.sweeps.sweep import variant_name
+    plan = plan_sweep("ash-34", "proposed", ["relative_speed=50m/s:60m/s:3"], "rigid")
+    result = run_sweep(plan)
+    said = ("{c}: the barrel's wall deflects about {d} mm under the peak force, {r} times its "
+            "thickness; the model's wall is linear elastic (docs/physics.md) (1 of 3 variants: "
+            "{v})")
+    warnings = [said.format(c=c.name, d=1.5 + i, r=0.5 + i / 10, v=variant_name(plan, i))
+                for c in result.conditions for i in (0, 1)]
+    warnings.append("stationary-bat: the located impact point lies on the search window's edge "
+                    "(40.3 cm from the pivot); the true maximum is outside the window (all 3 "
+                    "variants)")
+    return replace(result, warnings=sorted(warnings))
+
+
+def test_a_sweeps_alike_warnings_are_one_line(deflection_sweep):
+    from batcert.reports.warning_groups import grouped_warnings
+    assert len(deflection_sweep.warnings) == 3 * 2 + 1
+    grouped = grouped_warnings(deflection_sweep)
+    assert len(grouped) == 2
+    assert any(g.startswith("relative_speed 50-55 m/s (2 of 3 variants): every condition: the "
+                            "barrel's wall deflects about 1.5 to 2.5 mm under the peak force, "
+                            "0.5 to 0.6 times its thickness; the model's wall") for g in grouped)
+    assert any(g.startswith("all 3 variants: stationary-bat: the located impact point")
+               for g in grouped)
+
+
+def test_the_sweep_view_prints_grouped_warnings_and_keeps_them_all(deflection_sweep, capsys):
+    from batcert.console import views
+    views.sweep_summary(deflection_sweep, [])
+    err = capsys.readouterr().err
+    assert too_wide(err) == []
+    assert err.count("warning:") == 2 and "every condition" in err
+    assert len(deflection_sweep.warnings) == 7  # the result (its JSON, its reports): every one

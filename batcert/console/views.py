@@ -75,9 +75,15 @@ def comparison_summary(result, paths: Sequence[Any]) -> None:
 
 
 def league_summary(result, paths: Sequence[Any]) -> None:
-    """Terminal view of a league evaluation: a table per bat and rule."""
+    """Terminal view of a league evaluation: with several bats a summary first that fits one
+    screen (a row per bat: its verdict and the rules it fails; only that with ``--quiet``),
+    then a table per bat and rule."""
     from batcert.reports.league_view import league_view
     view = league_view(result)
+    if len(result.bats) > 1:
+        _league_brief(result)
+        if _Settings.quiet:
+            return
     for b in view["bats"]:
         badge = b["badge"]
         _emit([(_cell_text(badge), STYLES.get(getattr(badge, "css", ""), "")),
@@ -87,6 +93,24 @@ def league_summary(result, paths: Sequence[Any]) -> None:
                      for r in b["rules"]], [False, True, True, False, True, False]))
         _warnings(b["warnings"])
     _wrote(paths)
+
+
+def _league_brief(result) -> None:
+    """The league's verdict and a row per bat: name, verdict, failing (else not modelled)
+    rules, the last wrapped under itself."""
+    from batcert.reports.league_view import brief_rows, overall
+    badge, sentence = overall(result.bats)
+    _emit([(_cell_text(badge), STYLES.get(badge.css, "")),
+           (f"  {result.league} \u2014 {result.title}: {sentence}", "")])
+    rows = [("bat", None, "failing rules"), *brief_rows(result)]
+    name = max(len(n) for n, _, _ in rows)
+    verdict = max(len(_cell_text(b)) if b else len("verdict") for _, b, _ in rows)
+    for n, b, why in rows:
+        word = _cell_text(b) if b else "verdict"
+        _emit([(f"  {n.ljust(name)}  ", ""), (word, STYLES.get(b.css, "") if b else "bold"),
+               (" " * (verdict - len(word)) + f"  {why}", "")], hang=name + verdict + 6)
+    if not _Settings.quiet:
+        _emit([("", "")])  # then the detail
 
 
 def field_summary(result, paths: Sequence[Any]) -> None:

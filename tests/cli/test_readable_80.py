@@ -131,3 +131,36 @@ def test_the_sweep_view_prints_grouped_warnings_and_keeps_them_all(deflection_sw
     assert too_wide(err) == []
     assert err.count("warning:") == 2 and "every condition" in err
     assert len(deflection_sweep.warnings) == 7  # the result (its JSON, its reports): every one
+
+
+# ---------------------------------------------------------------- (d) a league of ten bats
+
+
+def _summary(stdout: str) -> list[str]:
+    lines = stdout.splitlines()
+    return lines[:lines.index("")]  # the summary, then a blank line, then the detail
+
+
+def test_a_league_of_several_bats_opens_with_a_summary(batcert_cli):
+    bats = ("aluminium-34", "ash-34", "r161")
+    res = batcert_cli("league", "ncaa", *bats, *RIGID)
+    _assert_fits(res)
+    head = _summary(res.stdout)
+    assert head[0].startswith("predicted FAIL  ncaa") and "Of 3 bats" in " ".join(head)
+    rows = {line.split()[0]: line for line in head[1:] if line.startswith("  ")}
+    assert rows["aluminium-34"].split()[1:] == ["predicted", "FAIL", "drop-non-wood"]
+    assert rows["ash-34"].split()[1] == "PASS"
+    assert sum(line.startswith("rule: ") for line in res.stdout.splitlines()) > 10  # detail
+    quiet = batcert_cli("-q", "league", "ncaa", *bats, *RIGID)  # the summary alone
+    assert quiet.stdout.splitlines() == head
+
+
+@pytest.mark.slow
+def test_a_league_of_ten_bats_sums_up_on_one_screen(batcert_cli, repo_root):
+    bats = sorted((repo_root / "bats").glob("*.yaml"))
+    assert len(bats) == 10
+    res = batcert_cli("league", "ncaa", *bats, *RIGID)
+    _assert_fits(res)
+    head = _summary(res.stdout)
+    assert len(head) <= 24 - 1 and "Of 10 bats" in " ".join(head)  # one 80x24 screen
+    assert len([line for line in head if line.startswith("  ")]) >= 10

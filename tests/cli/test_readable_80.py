@@ -164,3 +164,15 @@ def test_a_league_of_ten_bats_sums_up_on_one_screen(batcert_cli, repo_root):
     head = _summary(res.stdout)
     assert len(head) <= 24 - 1 and "Of 10 bats" in " ".join(head)  # one 80x24 screen
     assert len([line for line in head if line.startswith("  ")]) >= 10
+
+
+# ---------------------------------------------------------------- (g) a speed limit's unit
+
+
+def test_protocols_show_a_speed_limit_with_its_unit(batcert_cli):
+    # the batted-ball speed protocols' limit read "43.8099", a number of m/s without its unit
+    res = batcert_cli("protocols")
+    limits = [line.split(None, 1)[1] for line in res.stdout.splitlines()
+              if line.strip().startswith("limit ")]
+    assert "43.81 m/s (98.0 mph)" in limits and "43.8099" not in res.stdout
+    assert "0.5000" in limits  # BBCOR's, dimensionless, as run shows it

@@ -77,7 +77,7 @@ Examples:
 def protocols(as_json):
     """List the shipped protocols."""
     from batcert.commands.listing import list_protocols
-    from batcert.reports.format import DASH
+    from batcert.reports.format import metric_value
     from batcert.reports.table import Table
     items = list_protocols()
     if as_json:
@@ -85,7 +85,7 @@ def protocols(as_json):
         return
     console.table(Table(["id", "title", "metric", "impact rule", "limit", "conditions"],
                         [[p["id"], p["title"], p["metric"], p["rule"],
-                          DASH if p["limit"] is None else f"{p['limit']:g}",
+                          str(metric_value(p["limit"], p["metric"])),  # with its unit
                           ", ".join(p["conditions"])] for p in items]), "shipped protocols")
 
 

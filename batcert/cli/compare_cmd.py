@@ -19,6 +19,7 @@ from batcert.cli.base import (
     _stepper,
     main,
 )
+from batcert.console import views
 
 COMPARE_EXIT_CODES = """\b
 Exit codes:
@@ -75,7 +76,7 @@ def compare(bats, protocols, study, reference, study_figures, engine, out_dir, f
                                 on_step=_stepper(bar),
                                 figures=study_figures or figures_dir is not None)
     clock.lap("inputs and engine")
-    _finish(result, console.comparison_summary, target, fmts, as_json, clock, figures_dir)
+    _finish(result, views.comparison_summary, target, fmts, as_json, clock, figures_dir)
 
 
 @main.command(epilog=LEAGUE_EXIT_CODES + """
@@ -101,5 +102,5 @@ def league(league_id, bats, engine, allow_not_modelled, out_dir, formats, no_rep
     with console.progress("checking the rules") as bar:
         result = run_league(league_id, list(bats), engine, on_step=_stepper(bar))
     clock.lap("inputs and engine")
-    _finish(result, console.league_summary, target, fmts, as_json, clock,
+    _finish(result, views.league_summary, target, fmts, as_json, clock,
             code=result.return_code(allow_not_modelled))

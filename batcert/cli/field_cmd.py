@@ -21,6 +21,7 @@ from batcert.cli.base import (
     _report_dir,
     main,
 )
+from batcert.console import views
 
 FIELD_EXIT_CODES = """\b
 Exit codes:
@@ -95,4 +96,4 @@ def field(bats, batters, reference, pitch_speed, launch_angle, backspin, sidespi
     with console.progress("swinging the bats"):
         result = run_field(list(bats), list(batters), reference, engine, settings)
     clock.lap("inputs and engine")
-    _finish(result, console.field_summary, target, fmts, as_json, clock, figures_dir)
+    _finish(result, views.field_summary, target, fmts, as_json, clock, figures_dir)

@@ -21,6 +21,7 @@ from batcert.cli.base import (
     _report_dir,
     main,
 )
+from batcert.console import views
 from batcert.errors import InputError
 
 REDUCE_EXIT_CODES = """\b
@@ -75,7 +76,7 @@ def reduce(session, protocol, bat, decision_rule, calibrated_bat, engine, out_di
     # nothing certified), the usage error leaves nothing behind
     calibration = None if calibrated_bat is None else _calibration_text(result, session,
                                                                          calibrated_bat)
-    _deliver(result, console.lab_summary, target, fmts, as_json)
+    _deliver(result, views.lab_summary, target, fmts, as_json)
     if calibration is not None:
         from batcert.reports.write import atomic_write_text
         atomic_write_text(calibrated_bat, calibration)

@@ -24,6 +24,7 @@ from batcert.cli.base import (
     _write_then_show,
     main,
 )
+from batcert.console import views
 
 
 @main.command(epilog=EXIT_CODES + """
@@ -96,7 +97,7 @@ def run(bats, protocols, samples, seed, engine, out_dir, formats, no_reports, as
                 console.warnings(r.warnings)
         else:
             for r, paths in zip(results, written, strict=True):
-                console.run_summary(r, paths)
+                views.run_summary(r, paths)
             if len(batch) > 1:
                 judged = [r.verdict for r in results if r.verdict]
                 console.note_out(f"{len(batch)} bats, {len(results)} runs: "

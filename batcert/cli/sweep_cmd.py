@@ -25,6 +25,7 @@ from batcert.cli.base import (
     _report_dir,
     main,
 )
+from batcert.console import views
 
 SWEEP_EXIT_CODES = """\b
 Exit codes:
@@ -128,7 +129,7 @@ def sweep(bat, protocol, varies, resume, workers, scheduler, figures_dir, engine
     with console.progress("sweeping") as bar:
         result = run_sweep(plan, journal, resume, workers, scheduler, _counter(bar))
     clock.lap(f"engine ({len(result.points)} variants)")
-    _deliver(result, console.sweep_summary, target, fmts, as_json)
+    _deliver(result, views.sweep_summary, target, fmts, as_json)
     finish_journal(journal)
     _figures(result, figures_dir)
     clock.lap("reports")
@@ -171,4 +172,4 @@ def design(bat, protocol, parameter, range_text, points, tolerance, workers, sch
         result = run_design(bat, protocol, parameter, range_text, engine, points, tolerance,
                             _counter(bar), workers, scheduler)
     clock.lap("engine")
-    _finish(result, console.sweep_summary, target, fmts, as_json, clock, figures_dir)
+    _finish(result, views.sweep_summary, target, fmts, as_json, clock, figures_dir)

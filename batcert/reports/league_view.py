@@ -79,6 +79,23 @@ def rule_row(r: RuleResult) -> dict[str, Any]:
             "source": r.source, "confidence": r.confidence, "note": r.note}
 
 
+def brief_rows(result: LeagueResult) -> list[tuple[str, Badge, str]]:
+    """One row per bat for the terminal's summary (issue 40): its short name (the bat file's
+    name, or the bat's when two files share one), its verdict, and in a few words why: the rules
+    it fails, else those not modelled."""
+    from pathlib import PurePosixPath
+    stems = [PurePosixPath(b.path.replace("\\", "/")).stem for b in result.bats]
+    rows = []
+    for b, stem in zip(result.bats, stems, strict=True):
+        failed = [r.rule for r in b.rules if r.verdict == "fail"]
+        open_ = [r.rule for r in b.rules if r.verdict == "not-modelled"]
+        why = (", ".join(failed) if failed
+               else "not modelled: " + ", ".join(open_) if open_ else fmt.DASH)
+        rows.append((stem if stem and stems.count(stem) == 1 else b.bat,
+                     _badge(b.verdict, rests_on_model(b.rules, b.verdict)), why))
+    return rows
+
+
 def league_view(result: LeagueResult) -> dict[str, Any]:
     """Everything the league report shows, formatted; the templates only arrange it."""
     head_badge, sentence = overall(result.bats)

@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 
 import pytest
+from terminal_lines import items
 
 from batcert import workspace
 
@@ -41,7 +42,7 @@ def test_damaged_entries_are_recomputed_with_one_warning_each(batcert_cli, cache
     damaged = _run(batcert_cli)
     assert damaged.exit_code == clean.exit_code, damaged.stderr
     assert _numbers(damaged) == _numbers(clean)
-    said = [line for line in damaged.stderr.splitlines() if "is damaged" in line]
+    said = [line for line in items(damaged.stderr) if "is damaged" in line]
     assert sorted(said) == sorted(set(said)) and len(said) == len(entries), damaged.stderr
     assert all(line.startswith("  warning: cache entry ") for line in said)
     assert "Traceback" not in damaged.stderr

@@ -10,11 +10,16 @@ from batcert.inplay.evaluate import MODEL_OFFSET
 from batcert.methods.metrics import METRICS
 
 
+def flat(text: str) -> str:
+    """``text`` with its wrapping undone (terminal output wraps at the width)."""
+    return " ".join(text.split())
+
+
 def test_run_quiet_keeps_the_offset(batcert_cli):
     res = batcert_cli("run", "ash-34", "-p", "ncaa-bbcor", "-q", "--engine", "rigid",
                       "--no-reports")
     assert res.stdout.startswith("predicted PASS")
-    assert f"known offset of the model: {METRICS['bbcor'].model_offset}" in res.stdout
+    assert flat(f"known offset of the model: {METRICS['bbcor'].model_offset}") in flat(res.stdout)
 
 
 def test_league_shows_the_offset_and_a_geometric_fail_is_plain(batcert_cli, tmp_path):
@@ -24,7 +29,8 @@ def test_league_shows_the_offset_and_a_geometric_fail_is_plain(batcert_cli, tmp_
     # (the model's): the drop decides, so the bat's FAIL is plain; the BBCOR rule says predicted
     assert lines[0].startswith("FAIL  Aluminium 34 in")
     assert any(line.strip() == "verdict  predicted FAIL" for line in lines)
-    assert f"known offset of the model (BBCOR: {METRICS['bbcor'].model_offset})" in res.stdout
+    assert flat(f"known offset of the model (BBCOR: {METRICS['bbcor'].model_offset})") \
+        in flat(res.stdout)
     md = next(tmp_path.glob("*.md")).read_text()
     assert f"Known offset of the model (BBCOR: {METRICS['bbcor'].model_offset})" in md.replace("\\", "")
 
@@ -38,6 +44,6 @@ def test_league_fail_by_the_model_alone_is_predicted(batcert_cli):
 
 def test_field_states_its_offset(batcert_cli):
     res = batcert_cli("field", "ash-34", "--engine", "rigid", "--no-reports")
-    assert f"Known offset of the model: {MODEL_OFFSET}." in res.stdout
+    assert flat(f"Known offset of the model: {MODEL_OFFSET}.") in flat(res.stdout)
     data = json.loads(batcert_cli("field", "ash-34", "--engine", "rigid", "--json").stdout)
     assert data["results"][0]["model_offset"] == MODEL_OFFSET

@@ -7,6 +7,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from terminal_lines import items
+
 from batcert.methods.metrics import METRICS
 
 LAB = Path(__file__).resolve().parents[2] / "examples" / "lab"
@@ -14,7 +16,7 @@ LAB = Path(__file__).resolve().parents[2] / "examples" / "lab"
 
 def test_run_says_predicted_and_states_the_models_offset(batcert_cli):
     res = batcert_cli("run", "aluminium-34", "-p", "ncaa-bbcor", "--no-reports")
-    first, second, third = res.stdout.splitlines()[:3]
+    first, second, third = items(res.stdout)[:3]  # (each may wrap at the width)
     assert first.startswith("predicted FAIL  Aluminium 34 in")  # the model's verdict, said so
     assert second.lstrip().startswith("predicted BBCOR") and "[model: engine flexible" in second
     assert third.strip() == f"known offset of the model: {METRICS['bbcor'].model_offset}"

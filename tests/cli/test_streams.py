@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 
 import pytest
+from terminal_lines import items
 
 # the rigid engine's BESR maximum lies on the search window's edge: one warning
 RUN = ("run", "ash-34", "-p", "ncaa-besr", "--engine", "rigid", "--no-reports")
@@ -51,8 +52,8 @@ def test_global_flags_work_after_the_subcommand(batcert_cli, flags):
     assert after.stdout == before.stdout
     if flags[0] in ("-q", "--quiet"):
         # the verdict, the value and the model's known offset for BESR (issue 40, item 11)
-        assert "warning:" not in after.stderr and len(after.stdout.splitlines()) == 3
-        assert after.stdout.splitlines()[2].lstrip().startswith("known offset of the model")
+        assert "warning:" not in after.stderr and len(items(after.stdout)) == 3
+        assert items(after.stdout)[2].lstrip().startswith("known offset of the model")
     else:
         assert "batcert: bat" in after.stderr  # the -v log
 

@@ -4,7 +4,8 @@ On a terminal, rich draws them (styles, wrapping to the window); piped or redire
 plain text, aligned when they fit ``COLUMNS`` (default 140) and otherwise stacked one
 ``header: value`` per line, never cut. With ``--json`` only JSON is written to stdout so that
 scripts can parse it. Tables are the reports' own :class:`~batcert.reports.table.Table` objects
-with the reports' formatting (:mod:`batcert.reports.format`); user text is shown as plain text.
+with the reports' formatting (:mod:`batcert.reports.format`); every piece of user text is shown
+as plain text, never read as console markup or emoji codes.
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from collections.abc import Sequence
 from functools import lru_cache
 from typing import Any
 
-from batcert.reports import format as fmt
+from batcert.console.wrap import wrap_parts, wrap_text
 from batcert.reports.table import Badge, Table
 
 STYLES = {"pass": "green", "fail": "red", "warn": "yellow", "na": "dim", "info": "bold"}
@@ -105,6 +106,12 @@ def _width() -> int:
     return shutil.get_terminal_size((140, 24)).columns
 
 
+def _columns(stderr: bool = False) -> int:
+    """The width lines are laid out to: the terminal's (rich's), else :func:`_width`."""
+    return _console(stderr).width if _terminal(sys.stderr if stderr else sys.stdout) \
+        else _width()
+
+
 # control characters other than tab and line feed (ESC starts a terminal escape sequence, CR
 # overwrites a line): shown as \xNN, so text from a file or the command line cannot drive the
 # terminal
@@ -115,17 +122,23 @@ def _visible(text: str) -> str:
     return _CONTROL.sub(lambda m: f"\\x{ord(m.group()):02x}", text)
 
 
-def _emit(parts: Sequence[tuple[str, str]], stderr: bool = False) -> None:
+def _emit(parts: Sequence[tuple[str, str]], stderr: bool = False, hang: int | None = None,
+          wrap: bool = True) -> None:
     """One line made of (text, style) parts: styled on a terminal, plain otherwise; control
-    characters shown escaped."""
+    characters shown escaped; wrapped to the width with continuation lines indented by ``hang``
+    (default: the line's own indent + 4), so that a long headline or warning reads as one item
+    at 80 columns; not with ``wrap=False`` (an error stays one line, for a script to read)."""
     parts = [(_visible(text), style) for text, style in parts]
     stream = sys.stderr if stderr else sys.stdout
-    if _terminal(stream):
+    styled = _terminal(stream)
+    lines = wrap_parts(parts, _columns(stderr), hang) if wrap else [parts]
+    if styled:
         from rich.text import Text
 
-        _console(stderr).print(Text.assemble(*parts))
+        for line in lines:
+            _console(stderr).print(Text.assemble(*line))
     else:
-        stream.write("".join(text for text, _ in parts) + "\n")
+        stream.write("".join("".join(text for text, _ in line) + "\n" for line in lines))
 
 
 def print_json(data: Any) -> None:
@@ -146,12 +159,12 @@ def print_results(command: str, results: list[Any]) -> None:
 
 
 def error(message: str) -> None:
-    _emit([("error: ", "bold red"), (message, "")], stderr=True)
+    _emit([("error: ", "bold red"), (message, "")], stderr=True, wrap=False)
 
 
 def input_error(text: str) -> None:
     _emit([("invalid input", "bold red")], stderr=True)
-    _emit([(text, "")], stderr=True)
+    _emit([(text, "")], stderr=True, wrap=False)
 
 
 def note(message: str) -> None:
@@ -204,13 +217,15 @@ def _natural_width(t: Table) -> int:
 
 def _plain_table(t: Table, title: str) -> None:
     """Aligned columns (headers over as many lines as they have) when they fit the width;
-    otherwise each row as ``header: value`` lines, so that nothing is ever cut."""
+    otherwise each row as ``header: value`` lines (an empty cell left out), so that nothing is
+    ever cut, long values wrapped under themselves."""
     head_lines = [h.split("\n") for h in t.headers]
     depth = max(len(h) for h in head_lines)
     rows = [[_cell_text(c) for c in row] for row in [*t.rows, *t.foot]]
     widths = _widths(t)
-    lines = [title] if title else []
-    if _natural_width(t) <= _width():
+    width = _columns()
+    lines = wrap_text(title, width) if title else []
+    if _natural_width(t) <= width:
         def line(cells: Sequence[str]) -> str:
             return "  ".join(c.rjust(w) if t.is_numeric(i) else c.ljust(w)
                              for i, (c, w) in enumerate(zip(cells, widths, strict=True))).rstrip()
@@ -218,11 +233,20 @@ def _plain_table(t: Table, title: str) -> None:
         lines += [line(r) for r in rows]
     else:
         heads = [" ".join(h) for h in head_lines]
-        label = max(len(h) for h in heads)
+        label = max(len(h) for h in heads[1:]) if len(heads) > 1 else 0
         for r in rows:
-            lines += [f"{heads[0]}: {r[0]}"] + [f"  {h.ljust(label)}  {c}"
-                                                 for h, c in zip(heads[1:], r[1:], strict=True)]
+            lines += wrap_text(f"{heads[0]}: {r[0]}", width)
+            for h, c in zip(heads[1:], r[1:], strict=True):
+                lines += _labelled(h, label, c, width) if c.strip() else []  # empty: left out
     sys.stdout.write("\n".join(lines) + "\n")
+
+
+def _labelled(key: str, label: int, value: str, width: int, indent: str = "  ") -> list[str]:
+    """``key: value`` in a column of labels ``label`` wide; a long value wraps under itself
+    (or 4 columns in when the labels take half the width)."""
+    hang = len(indent) + label + 2
+    return wrap_text(f"{indent}{key.ljust(label)}  {value}".rstrip(), width,
+                     hang if hang <= width // 2 else len(indent) + 4)
 
 
 def blocks(view: Sequence[tuple[str, Any]]) -> None:
@@ -239,8 +263,11 @@ def kv_table(title: str, rows: Sequence[tuple[str, Any]]) -> None:
     t = Table(["", ""], [[k, v] for k, v in rows])
     if not _terminal(sys.stdout):
         label = max((len(k) for k, _ in rows), default=0)
-        sys.stdout.write("\n".join([title] + [f"{k.ljust(label)}  {_cell_text(v)}"
-                                               for k, v in rows]) + "\n")
+        width = _columns()
+        lines = wrap_text(title, width)
+        for k, v in rows:
+            lines += _labelled(k, label, _cell_text(v), width, indent="")
+        sys.stdout.write("\n".join(lines) + "\n")
         return
     from rich.table import Table as RichTable
     from rich.text import Text
@@ -263,7 +290,7 @@ def _verdict(verdict: str | None) -> tuple[str, str]:
 
 def _wrote(paths: Sequence[Any]) -> None:
     for p in [] if _Settings.quiet else paths:
-        _emit([(f"  wrote {p}", "")])
+        _emit([(f"  wrote {p}", "")], wrap=False)  # the path whole, on its line
 
 
 def warnings(warnings: Sequence[str]) -> None:
@@ -273,126 +300,10 @@ def warnings(warnings: Sequence[str]) -> None:
     if _Settings.quiet:
         return
     for w in warnings:
-        _emit([("  warning: ", "yellow"), (w, "")], stderr=True)
+        _emit([("  warning: ", "yellow"), (w, "")], stderr=True, hang=len("  warning: "))
 
 
 _warnings = warnings
-
-
-def run_summary(result, paths: Sequence[Any]) -> None:
-    """Terminal view of a :class:`~batcert.results.run.RunResult`: a model prediction, said
-    so on its first line ("predicted PASS"), with the model's known offset for the metric."""
-    m = result.metric
-    limit = "" if result.limit is None else (
-        f" against limit {fmt.metric_value(result.limit, m)}"
-        + (f" + {result.tolerance:g}" if result.tolerance else "")
-        + f", margin {fmt.metric_value(result.margin, m, signed_=True)}")
-    label, style = _verdict(result.verdict)
-    _emit([(f"predicted {label}" if result.verdict else label, style),
-           (f"  {result.bat} \u2014 {result.protocol} ({result.protocol_title})", "")])
-    n = len(result.conditions)
-    _emit([(f"  predicted {fmt.metric_word(m)} ({fmt.aggregate_word(result.aggregate)} of {n} "
-             f"condition{'s' if n > 1 else ''}) = {fmt.metric_value(result.value, m)}"
-             f"{limit}   [model: engine {result.engine}, {result.support}]", "")])
-    if result.model_offset:  # with -q too: it qualifies the verdict
-        _emit([(f"  known offset of the model: {result.model_offset}", "")])
-    shown = fmt.condition_metrics()
-    t = Table(["condition", "pitch\n[m/s]", "bat w1\n[rad/s]", "impact\n[m from pivot]",
-               "COP\n[m]", "sweet spot\n[m]", "exit speed\n[m/s (mph)]", "COR",
-               *[heading for _, _, heading in shown]], numeric=[False] + [True] * (7 + len(shown)))
-    for c in result.conditions:
-        t.rows.append([c.name, f"{-c.pitch_speed + 0.0:.1f}", f"{c.bat_angular_speed:.1f}",
-                       f"{c.impact_location:.3f}" + ("*" if c.at_window_edge else ""),
-                       f"{c.cop:.3f}", f"{c.sweet_spot:.3f}",
-                       fmt.quantity(c.exit_speed, "speed", 2), fmt.plain(c.cor, 4),
-                       *[fmt.metric_value(getattr(c, field), name) for name, field, _ in shown]])
-    table(t)
-    if result.uncertainty is not None:
-        from batcert.reports.uncertainty_view import summary_sentence
-        _emit([("  " + summary_sentence(result), "")])
-    _warnings(result.warnings)
-    _wrote(paths)
-
-
-def comparison_summary(result, paths: Sequence[Any]) -> None:
-    """Terminal view of a comparison: per protocol the report's table of the metric and P per
-    condition, then the study's claims and the findings."""
-    from batcert.reports.compare_view import comparison_view
-    view = comparison_view(result, charts=False)
-    _emit([(view["title"], "bold"),
-           (f"  (reference {result.reference}; engine {result.engine})", "")])
-    for p in view["protocols"]:
-        table(p["grid"], f"{p['id']} \u2014 {p['title']}")
-    if view["claims"]:
-        table(Table(["claim", "model", "evidence"],
-                    [[c["id"], c["badge"], c["evidence"]] for c in view["claims"]]),
-              "study claims against the model")
-    for f in [] if _Settings.quiet else result.findings:
-        _emit([(f"  - {f}", "")])
-    _warnings(result.warnings)
-    _wrote(paths)
-
-
-def league_summary(result, paths: Sequence[Any]) -> None:
-    """Terminal view of a league evaluation: a table per bat and rule."""
-    from batcert.reports.league_view import league_view
-    view = league_view(result)
-    for b in view["bats"]:
-        badge = b["badge"]
-        _emit([(_cell_text(badge), STYLES.get(getattr(badge, "css", ""), "")),
-               (f"  {b['bat']} \u2014 {result.league} ({result.title})", "")])
-        table(Table(["rule", "value", "limit", "verdict", "margin", "note"],
-                    [[r["id"], r["value"], r["limit"], r["badge"], r["margin"], r["note"]]
-                     for r in b["rules"]], [False, True, True, False, True, False]))
-        _warnings(b["warnings"])
-    for o in view["offsets"]:
-        _emit([(f"known offset of the model ({o})", "")])
-    _wrote(paths)
-
-
-def field_summary(result, paths: Sequence[Any]) -> None:
-    """Terminal view of an in-play prediction: per batter profile, the bats' table."""
-    from batcert.reports.field_view import prediction, terminal_tables
-    _emit([("model prediction", "bold"), (f"  {prediction(result)}", "")])
-    for title, t in terminal_tables(result):
-        table(t, title)
-    _warnings(result.warnings)
-    _wrote(paths)
-
-
-def sweep_summary(result, paths: Sequence[Any]) -> None:
-    """Terminal view of a sweep or design study: the headline, the table per variant (up to
-    40 rows; the reports hold more) and the design's answer."""
-    from batcert.reports.sweep_view import headline, nominal_sentence, sweep_view
-    view = sweep_view(result, charts=False)
-    _emit([(view["title"], "bold")])
-    _emit([(f"  {headline(result)}", "")])
-    if nominal_sentence(result) and not _Settings.quiet:
-        _emit([(f"  {nominal_sentence(result)}", "")])
-    t = view["summary"]
-    if len(t.rows) > 40:
-        step = -(-len(t.rows) // 40)
-        t = Table(t.headers, t.rows[::step], t.numeric)
-        _emit([(f"  (every {step}th variant shown; the reports hold all)", "dim")])
-    table(t)
-    _warnings(result.warnings)
-    _wrote(paths)
-
-
-def lab_summary(result, paths: Sequence[Any]) -> None:
-    """Terminal view of a lab certificate: verdict, sentence, uncertainty budget, scan."""
-    from batcert.reports.lab_view import lab_view
-    view = lab_view(result, charts=False)
-    b = view["badge"]
-    _emit([(_cell_text(b), STYLES.get(getattr(b, "css", ""), "")), (f"  {view['title']}", "")])
-    _emit([(f"  {view['sentence']}", "")])
-    if result.conformance_probability is not None:
-        _emit([(f"  conformance probability {result.conformance_probability:.4f}; decision "
-                f"rule: {result.decision_rule} acceptance", "")])
-    table(view["budget"], "measurement uncertainty")
-    table(view["scan"], "location scan")
-    _warnings(result.warnings)
-    _wrote(paths)
 
 
 def note_out(message: str) -> None:

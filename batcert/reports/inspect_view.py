@@ -40,8 +40,40 @@ def bat_view(info: dict) -> list[Block]:
     if info.get("layup"):
         out.append(("layup (walls innermost first, plies inside out)", _layup(info["layup"])))
     if info.get("barrel"):
-        out.append(("barrel (shell of revolution; SI: m, Hz)", list(flatten(info["barrel"]))))
+        out.append(("barrel (shell of revolution)", barrel_rows(info["barrel"])))
     return out
+
+
+def _hz(x: Any) -> str:
+    return "\u2014" if x is None else f"{x:.0f} Hz"
+
+
+# the barrel block's rows: its key in inspect's JSON, the label, how the value reads
+_BARREL = (
+    ("start", "starts (from knob)", lambda x: str(show(x, "length"))),
+    ("end", "ends (from knob)", lambda x: str(show(x, "length"))),
+    ("tip_end", "tip end", str),
+    ("outer_diameter", "outer diameter", lambda x: str(show(x, "length", 4))),
+    ("wall", "wall thickness", lambda x: f"{x * 1e3:.2f} mm ({x / 0.0254:.4f} in)"),
+    ("hoop_frequency_hz", "hoop frequency", _hz),
+    ("measured_hoop_frequency_hz", "hoop frequency, measured", _hz),
+    ("ring_frequency_hz", "ring frequency", _hz),
+    ("stiffness_scale", "stiffness scale", lambda x: f"x{x:.3f}"),
+    ("mass_scale", "mass scale", lambda x: f"x{x:.3f}"),
+    ("calibrated", "calibrated by a measurement", lambda x: "yes" if x else "no"),
+)
+
+
+def barrel_rows(barrel: dict[str, Any]) -> list[tuple[str, Any]]:
+    """The barrel block: each value labelled with its unit (``inspect --json`` keeps SI);
+    the shell's modes by circumferential order; a key not listed here as it is."""
+    known = {key for key, _, _ in _BARREL} | {"modes_hz"}
+    rows = [(label, read(barrel[key])) for key, label, read in _BARREL if key in barrel]
+    for order, freqs in (barrel.get("modes_hz") or {}).items():
+        rows.append((f"shell modes {order.replace('n=', 'n = ')}",
+                     ", ".join(f"{f:.0f}" for f in freqs) + " Hz"))
+    rows += [(k, v) for k, v in flatten({k: v for k, v in barrel.items() if k not in known})]
+    return rows
 
 
 def _layup(spans: list[dict]) -> Table:

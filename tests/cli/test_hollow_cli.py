@@ -103,3 +103,18 @@ def test_energy_budget_closes(uncalibrated):
     approach, returned, ball, bending, barrel = joules
     assert returned + ball + bending + barrel == pytest.approx(approach, rel=2e-3)
     assert barrel > 0 and ball > barrel
+
+
+def test_inspect_labels_the_barrel_with_units(batcert_cli):
+    # issue 40, item 13: the barrel block showed raw SI keys (outer_diameter 0.066675,
+    # hoop_frequency_hz 1883.4); the terminal labels each value with its unit, the JSON keeps SI
+    res = batcert_cli("inspect", "bbcor-alloy-34")
+    block = res.stdout[res.stdout.index("barrel (shell of revolution)"):]
+    assert "_hz" not in block and "outer_diameter" not in block and "0.066675" not in block
+    assert "outer diameter" in block and "(2.62 in)" in block
+    assert "wall thickness               2.85 mm (0.1122 in)" in block
+    assert "hoop frequency               1883 Hz" in block
+    assert "shell modes n = 2            1883, 2209, 2804 Hz" in block
+    data = json.loads(batcert_cli("inspect", "bbcor-alloy-34", "--json").stdout)
+    data = data.get("results", [data])[0] if "results" in data else data
+    assert data["barrel"]["outer_diameter"] == pytest.approx(0.066675)

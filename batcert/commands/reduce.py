@@ -138,6 +138,7 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
         warnings=c.warnings + barrel_warnings + _record_warnings(session, bat_spec, p),
         inputs=_inputs(session, p), batcert_version=__version__, created=utc_now(),
         lab=_lab(spec), protocol_reference=p.reference, protocol_version=p.version,
+        speed_unit=h.speed_unit,
         barrel_fits=barrel_fits,
         model=_model(session, p, pin.ball, engine, location_from_tip, c.value),
         break_in=break_in)

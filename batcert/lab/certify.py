@@ -26,6 +26,7 @@ from batcert.methods.metrics import METRICS
 from batcert.methods.reduction import HitReduction
 from batcert.numerics import student_t_quantile
 from batcert.specs.protocol import ProtocolSpec
+from batcert.units import FAST_UNITS
 
 OUTLIER_Z = 3.5  # robust z above which a hit is flagged (Iglewicz & Hoaglin 1993)
 COVERAGE = 0.95  # coverage probability of the expanded uncertainty
@@ -87,8 +88,9 @@ def _validity(session: LabSession, protocol: ProtocolSpec) -> list[list[str]]:
         if not h.valid[i]:
             reasons[i].append("marked invalid" + (f" ({h.note[i]})" if h.note[i] else ""))
         if abs(h.inbound_speed[i] - speed) > s.speed_tolerance:
-            reasons[i].append(f"inbound speed {h.inbound_speed[i]:.2f} m/s is more than "
-                              f"{s.speed_tolerance:.2f} m/s from {speed:.2f} m/s")
+            u, f = h.speed_unit, FAST_UNITS["speed"][h.speed_unit]  # the lab's own unit
+            reasons[i].append(f"inbound speed {h.inbound_speed[i] / f:.2f} {u} is more than "
+                              f"{s.speed_tolerance / f:.2f} {u} from {speed / f:.2f} {u}")
         count[h.ball[i]] = count.get(h.ball[i], 0) + 1
         if s.hits_per_ball is not None and count[h.ball[i]] > s.hits_per_ball:
             reasons[i].append(f"ball {h.ball[i]}'s hit {count[h.ball[i]]} (at most "

@@ -13,6 +13,7 @@ from batcert.reports.figure import LineFigure
 from batcert.reports.svg import Point, Series, VLine
 from batcert.reports.table import Badge, Table
 from batcert.results.lab import CERTIFICATE_FIELDS, LabResult, certificate_values
+from batcert.units import FAST_UNITS
 
 INCH = 0.0254
 
@@ -197,10 +198,12 @@ def _scan(result: LabResult, word: str) -> Table:
 
 def _hits(result: LabResult) -> Table:
     """Every hit: its measurements, its reduced values, its validity and use."""
-    return Table(["hit", "ball", "line", "v_i [m/s]", "v_r [m/s]", "from tip [in]", "e_A", "k",
+    u = result.speed_unit  # the lab's own unit (the JSON keeps m/s)
+    f = FAST_UNITS["speed"].get(u, 1.0)
+    return Table(["hit", "ball", "line", f"v_i [{u}]", f"v_r [{u}]", "from tip [in]", "e_A", "k",
                   "BBCOR", "BESR", "BPF", "valid", "used", "reasons"],
-                 [[f"{h.hit:g}", h.ball, str(h.line), f"{h.inbound_speed:.2f}",
-                   f"{h.rebound_speed:.2f}", f"{h.from_tip / INCH:.3f}",
+                 [[f"{h.hit:g}", h.ball, str(h.line), f"{h.inbound_speed / f:.2f}",
+                   f"{h.rebound_speed / f:.2f}", f"{h.from_tip / INCH:.3f}",
                    _v(h.collision_efficiency), _v(h.recoil_factor), _v(h.bbcor), _v(h.besr),
                    _v(h.bpf), "yes" if h.valid else "NO", "yes" if h.used else "",
                    "; ".join(h.reasons)] for h in result.hits],

@@ -155,6 +155,7 @@ class LabResult(Serialisable):
     lab: dict[str, Any] = field(default_factory=dict)
     protocol_reference: str | None = None  # the protocol file's reference and version
     protocol_version: str | None = None
+    speed_unit: str = "m/s"  # the unit the lab's hits CSV gives speeds in: shown in it
     # hollow bats: every barrel stiffness scale at which the model meets the measurement at the
     # certified location (scale, u_scale, hoop_frequency [Hz], u_hoop_frequency [Hz], slope)
     barrel_fits: list[dict[str, float]] = field(default_factory=list)

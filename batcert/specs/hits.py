@@ -66,6 +66,7 @@ class Hits:
     valid: np.ndarray  # bool: the operator's validity flag
     note: list[str]
     line: list[int]  # the CSV line of each hit
+    speed_unit: str = "m/s"  # the unit the lab wrote its speeds in (shown back in it)
 
 
 def read_hits_bytes(path: Path) -> bytes:
@@ -147,7 +148,18 @@ def load_hits(path: str | Path, location_from: str = "tip",
     if not hits:
         errors.add(head_line, "", "the file has a header but no hits")
     errors.raise_if_any()
-    return _as_hits(path, sha256_of(raw), hits)
+    return _as_hits(path, sha256_of(raw), hits, _speed_unit(header))
+
+
+def _speed_unit(header: list[str]) -> str:
+    """The unit of the inbound speed column as the lab wrote it, if it is one batcert shows
+    (m/s, mph, ft/s, km/h); else (or for gate times) m/s."""
+    from batcert.units import FAST_UNITS
+    for cell in header:
+        m = _HEADER.match(cell)
+        if m and m.group(1) == "inbound_speed" and m.group(2) in FAST_UNITS["speed"]:
+            return m.group(2)
+    return "m/s"
 
 
 # the known columns of a header: name -> (index in a row, SI factor of its unit or None)
@@ -359,9 +371,10 @@ def _ball_speeds(row: _Row, speeds: bool, gate_spacing: float | None) -> tuple[f
     return vi, vr
 
 
-def _as_hits(path: Path, sha256: str, hits: list[tuple]) -> Hits:
+def _as_hits(path: Path, sha256: str, hits: list[tuple], speed_unit: str = "m/s") -> Hits:
     """:class:`Hits` from the tuples of :func:`_read_hit` (at least one)."""
     hit, ball, vi, vr, location, w2, valid, note, line = (
         list(c) for c in zip(*hits, strict=True))
     return Hits(str(path), sha256, np.asarray(hit), ball, np.asarray(vi), np.asarray(vr),
-                np.asarray(location), np.asarray(w2), np.asarray(valid, bool), note, line)
+                np.asarray(location), np.asarray(w2), np.asarray(valid, bool), note, line,
+                speed_unit)

@@ -105,3 +105,27 @@ def test_a_model_moi_is_a_warning(tmp_path):
     r = run_reduce(session, "ncaa-bbcor", engine="rigid")
     assert r.moi_source == "model"
     assert any("MOI about the pivot is the model's" in w for w in r.warnings)
+
+
+def test_speeds_are_shown_in_the_labs_own_unit(tmp_path):
+    # issue 40, item 13: a lab that entered mph read its hits back in m/s
+    text = (LAB / "synthetic-exact.csv").read_text().splitlines()
+    out = []
+    for line in text:
+        if line.startswith("#"):
+            out.append(line)
+        elif line.startswith("hit,"):
+            out.append(line.replace("[m/s]", "[mph]"))
+        else:
+            cells = line.split(",")
+            cells[2], cells[3] = (f"{float(c) / 0.44704:.4f}" for c in cells[2:4])
+            out.append(",".join(cells))
+    (tmp_path / "mph.csv").write_text("\n".join(out) + "\n")
+    session = tmp_path / "session.yaml"
+    session.write_text((LAB / "synthetic-exact.yaml").read_text().replace(
+        "hits: synthetic-exact.csv", "hits: mph.csv"))
+    r = run_reduce(str(session), "ncaa-bbcor", engine="rigid")
+    assert r.speed_unit == "mph" and r.hits[0].inbound_speed == pytest.approx(60.8, abs=0.01)
+    md = render(r, "md").replace("\\[", "[").replace("\\]", "]")  # Markdown's escapes
+    assert "v_i [mph]" in md and "v_r [mph]" in md and "| 136.00 |" in md
+    assert "v_i [m/s]" not in md

@@ -29,7 +29,7 @@ def test_run_and_sweep_reports_show_it(batcert_cli, tmp_path):
                        ).exit_code == 0  # rigid wood: BBCOR about 0.48, a predicted pass
     assert batcert_cli("sweep", bat, "-p", "ncaa-bbcor", "--vary", "pitch_speed=40m/s:60m/s:3",
                        "--engine", "rigid", "--out", out).exit_code == 0
-    reports = {p.name: p.read_text(encoding="utf-8") for p in out.iterdir()}
+    reports = {p.name: p.read_text(encoding="utf-8") for p in out.glob("[!.]*")}
     assert len(reports) == 6
     for name, text in reports.items():
         if name.endswith(".json"):

@@ -41,7 +41,7 @@ def written(result, tmp_path_factory) -> dict[str, Path]:
 def test_files_written(written):
     assert set(written) == {"md", "html", "json"}
     out = written["md"].parent
-    assert sorted(p.name for p in out.iterdir()) == sorted(p.name for p in written.values())
+    assert sorted(p.name for p in out.glob("[!.]*")) == sorted(p.name for p in written.values())
     for path in written.values():
         assert path.stem == "ash-34-in-smith-2001--proposed"
         assert path.stat().st_size > 1000

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from batcert.conventions import SOFTBALL_RADIUS
 from batcert.errors import Collector, InputError, Problem
 from batcert.physics.ball import BallModel
 from batcert.physics.balls import LAWS, ContactLaw, PowerLawHysteresis, TwoTimeViscoelastic, Viscoelastic
@@ -298,6 +299,11 @@ class BallSpec:
     @property
     def sha256(self) -> str:
         return self.source.sha256
+
+    @property
+    def body(self) -> str:
+        """The game the ball is for, by its size (:data:`SOFTBALL_RADIUS`)."""
+        return "softball" if self.model.radius > SOFTBALL_RADIUS else "baseball"
 
 
 def ball_tests(tests: tuple[tuple[str, TestPoint], ...]) -> tuple[BallTest, ...]:

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from batcert.conventions import DEFAULT_PIVOT
+from batcert.conventions import BODIES, DEFAULT_PIVOT
 from batcert.errors import Collector
 from batcert.physics.batmodel import Material
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked, pairs, spec_from
@@ -182,6 +182,8 @@ IDENTIFICATION_SCHEMA = Schema("bat identification", (
 BAT_SCHEMA = Schema("bat", (
     Field("name", label(), "Bat name shown in reports.", required=True),
     *HEADER_FIELDS,
+    Field("body", choice(*BODIES), "The game the bat is made for (its ball): a run under a "
+          "protocol whose ball is the other game's warns."),
     Field("construction", choice("solid", "hollow"), "Solid (wood) or hollow (metal, composite) "
           "barrel.", required=True),
     Field("length", quantity("length", minimum=0.3, maximum=1.5), "Overall length, knob end "
@@ -263,6 +265,7 @@ class BatSpec:
     reconcile: str  # density-profile | point-masses | none
     identification: dict | None = None  # maker, model, serial, lot (text; those given)
     layup: tuple = ()  # (start [m from knob], end [m], WallStack) spans; () for none
+    body: str | None = None  # baseball | softball; None when the file does not say
 
     @property
     def path(self) -> str:

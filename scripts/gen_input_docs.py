@@ -179,8 +179,9 @@ reconcile: density-profile
 ```
 
 Rules across fields: a `hollow` bat needs `wall`, a `solid` bat must not have one; profile
-stations increase strictly and lie between the knob (0) and the tip (`length`); the wall must
-leave a bore everywhere (thickness below half the outer diameter). The profile and the wall are
+stations increase strictly and lie between the knob (0) and the tip (`length`; a length under
+0.5 m that the stations run past is taken as the length's mistake, a unit, and reported at
+`length`); the wall must leave a bore everywhere (thickness below half the outer diameter). The profile and the wall are
 interpolated linearly between stations and held constant beyond the first and last.
 """
 

@@ -276,14 +276,15 @@ def evaluate_rule(rule: RuleSpec, f: BatFacts, run: RunResult | None = None) -> 
     return out
 
 
-def evaluate_bat(rules: Sequence[RuleSpec], f: BatFacts, runs: dict[str, RunResult]) -> BatLeagueResult:
-    """All rules on one bat; ``runs`` maps a performance rule's id to its protocol result."""
+def evaluate_bat(rules: Sequence[RuleSpec], f: BatFacts, runs: dict[str, RunResult],
+                 engine_warning: str | None = None) -> BatLeagueResult:
+    """All rules on one bat; ``runs`` maps a performance rule's id to its protocol result;
+    ``engine_warning``: what the engine's results do not show of a bat
+    (:attr:`batcert.engines.base.Engine.construction_warning`), added when a rule ran."""
     results = [evaluate_rule(r, f, runs.get(r.id)) for r in rules]
     warnings = [f"{rid} ({run.protocol}): {w}" for rid, run in runs.items() for w in run.warnings]
-    if any(run.engine == "rigid" for run in runs.values()):
-        warnings.append("rigid engine: the ball-bat COR is the ball's own COR at the relative "
-                        "speed, so BBCOR, BPF and COR do not depend on the bat's construction or "
-                        "material; performance verdicts need the flexible engine")
+    if runs and engine_warning:
+        warnings.append(engine_warning)
     facts = {"length": f.length, "mass": f.mass, "drop": f.drop,
              "barrel_diameter": f.barrel_diameter, "min_diameter": f.min_diameter,
              "construction": f.construction, "material": f.material,
@@ -292,12 +293,14 @@ def evaluate_bat(rules: Sequence[RuleSpec], f: BatFacts, runs: dict[str, RunResu
 
 
 def evaluate_league(league: LeagueSpec, bats: Sequence[tuple[BatFacts, dict[str, RunResult]]],
-                    engine: str, created: str | None = None) -> LeagueResult:
-    """Evaluate a :class:`~batcert.specs.league.LeagueSpec` on several bats."""
+                    engine: str, created: str | None = None,
+                    engine_warning: str | None = None) -> LeagueResult:
+    """Evaluate a :class:`~batcert.specs.league.LeagueSpec` on several bats (``engine_warning``:
+    :func:`evaluate_bat`'s)."""
     return LeagueResult(
         league=league.id, title=league.title, reference=league.reference, version=league.version,
         description=league.description or "", notes=league.notes or "", path=league.path,
         sha256=league.sha256, engine=engine,
-        bats=[evaluate_bat(league.rules, f, runs) for f, runs in bats],
+        bats=[evaluate_bat(league.rules, f, runs, engine_warning) for f, runs in bats],
         batcert_version=__version__,
         created=created or utc_now())

@@ -94,13 +94,15 @@ def protocols(as_json):
 \b
 Examples:
   batcert validate bats/*.yaml protocols/*.yaml
-  batcert validate my-bat.yaml ncaa-bbcor""")
+  batcert validate my-bat.yaml ncaa-bbcor
+  batcert validate examples/lab/synthetic-scatter.csv""")
 @click.argument("files", nargs=-1, required=True, type=click.Path())
 @click.option("--json", "as_json", is_flag=True, help="Print only JSON on stdout: each file "
               "with its kind and every problem (file, line, column, field, message).")
 def validate(files, as_json):
-    """Check spec files (bat, ball, protocol, league, study; paths or shipped names) and the
-    files they name; report every problem of every file."""
+    """Check spec files (bat, ball, protocol, league, study, lab session; paths or shipped
+    names) and the files they name, and lab hits CSVs as `batcert reduce` reads them; report
+    every problem of every file."""
     from batcert.commands.validate import shipped_path, validate_file
     from batcert.specs.resolve import NotFound
     failed = False

@@ -91,9 +91,10 @@ def _session_inputs(session: str, bat: str | None) -> list[Path]:
     here is left to the reduction to report."""
     from batcert.errors import UsageProblem
     from batcert.specs.resolve import resolve
+    from batcert.specs.session import is_hits_csv
     paths = [Path(session)]
     try:
-        if Path(session).suffix.lower() == ".csv":
+        if is_hits_csv(session):
             if bat is not None:
                 paths.append(Path(resolve("bat", bat)))
         else:

@@ -138,7 +138,10 @@ def same_file(a: Path, b: Path) -> bool:
 
 def detect_kind(path: str) -> str:
     """Guess a spec file's kind from its keys (bat, ball, protocol, league, study, lab
-    session)."""
+    session), or ``hits`` for a lab's hits CSV (by its name, as ``batcert reduce`` tells it)."""
+    from batcert.specs.session import is_hits_csv
+    if is_hits_csv(path):
+        return "hits"
     data = load_yaml(path)
     if "hits" in data:
         return "session"

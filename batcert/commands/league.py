@@ -42,5 +42,6 @@ def run_league(league: str, bats: list[str], engine: str = "flexible",
                 p = protocols[rule.id]
                 runs[rule.id] = results[(i, p.protocol.path, p.protocol.id)]
         per_bat.append((f, runs))
-    result = evaluate_league(spec, per_bat, eng.name if eng else "none (no performance rule ran)")
+    result = evaluate_league(spec, per_bat, eng.name if eng else "none (no performance rule ran)",
+                             engine_warning=eng.construction_warning if eng else None)
     return replace(result, path=display_path(result.path))

@@ -173,11 +173,9 @@ def _record_warnings(session: LabSession, bat_spec, p: ProtocolSpec) -> list[str
 def _session(session_path: str, pin: ProtocolInputs, bat: str | None) -> LabSession:
     """The lab session of a session YAML, or of a bare hits CSV with ``bat`` (the protocol's
     ball and pivot)."""
-    from pathlib import Path
-
     from batcert.errors import UsageProblem
-    from batcert.specs.session import session_for_hits
-    if Path(session_path).suffix.lower() == ".csv":
+    from batcert.specs.session import is_hits_csv, session_for_hits
+    if is_hits_csv(session_path):
         if bat is None:
             raise UsageProblem("a bare hits CSV needs --bat (or give a session YAML that names "
                                "the bat, the ball lot and the pivot)")

@@ -24,6 +24,7 @@ _LOADERS = {
     "bat": lambda path: build_bat(load_bat(path)),
     "session": lambda path: _session(path),
     "batter": lambda path: _batter(path),
+    "hits": lambda path: _hits(path),
 }
 
 
@@ -31,6 +32,12 @@ def _batter(path) -> None:
     """A batter file loads with its ball."""
     from batcert.commands.inputs import batter_inputs
     batter_inputs(path)
+
+
+def _hits(path) -> None:
+    """A bare hits CSV reads as ``batcert reduce HITS.csv --bat BAT`` reads it."""
+    from batcert.specs.session import load_bare_hits
+    load_bare_hits(path)
 
 
 def _session(path) -> None:

@@ -13,7 +13,7 @@ from batcert.engines.base import Engine, ImpactBatch, ImpactOutcome, Job
 from batcert.errors import UsageProblem
 
 __all__ = ["ENGINES", "Engine", "EngineEntry", "EngineUnavailable", "ImpactBatch",
-           "ImpactOutcome", "Job", "available_engines", "get_engine"]
+           "ImpactOutcome", "Job", "available_engines", "construction_warning", "get_engine"]
 
 
 @dataclass(frozen=True)
@@ -52,3 +52,13 @@ def get_engine(name: str, **options) -> Engine:
                                 "with --engine")
     engine: Engine = getattr(importlib.import_module(entry.module), entry.cls)(**options)
     return engine
+
+
+def construction_warning(name: str) -> str | None:
+    """What a result of engine ``name`` does not show of a bat's construction and material
+    (:attr:`Engine.construction_warning`), without making the engine; None for an unknown one."""
+    entry = ENGINES.get(name)
+    if entry is None:
+        return None
+    cls = getattr(importlib.import_module(entry.module), entry.cls)
+    return cls.construction_warning

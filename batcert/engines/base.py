@@ -85,6 +85,10 @@ class Engine(Protocol):
     #: whether the engine models a hollow bat's barrel shell (a run then records the barrel's
     #: modes and range; an engine that does not never builds the shell)
     models_barrel: bool
+    #: what a result of this engine does not show of a bat, as one warning line: the rigid
+    #: engine's does not depend on the bat's construction or material (None: it does). Shown
+    #: wherever bats' constructions are compared or varied (a league, a sweep, a design)
+    construction_warning: str | None
     #: metric name -> warning: metrics that this engine cannot resolve (e.g. a rigid bat's
     #: BPF reflects only the ball's loss, not the bat)
     limitations: dict[str, str]

@@ -150,6 +150,7 @@ class FlexibleEngine:
 
     name = "flexible"
     models_barrel = True
+    construction_warning: str | None = None
     limitations: dict[str, str] = {}
 
     def __init__(self, n_modes: int = DEFAULT_MODES, time_step: float | None = None,

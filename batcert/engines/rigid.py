@@ -30,6 +30,10 @@ class RigidEngine:
 
     name = "rigid"
     models_barrel = False
+    construction_warning: str | None = (
+        "rigid engine: the ball-bat COR is the ball's own COR at the relative speed, so BBCOR, "
+        "BPF and COR do not depend on the bat's construction or material; performance "
+        "verdicts need the flexible engine")
     limitations = {"bpf": "rigid engine: the bat neither vibrates nor flexes, so BPF only "
                           "reflects the ball's lower loss when it compresses less against a "
                           "recoiling bat; use the flexible engine for a meaningful BPF"}

@@ -30,6 +30,7 @@ from batcert.runner.bench import Bench, Steps, drive
 from batcert.runner.conditions import Condition, conditions_from_spec
 from batcert.runner.locate import Search, locate_steps
 from batcert.specs.ball import BallSpec
+from batcert.specs.bat import BatSpec
 from batcert.specs.common import split_field
 from batcert.specs.protocol import LimitSpec, ProtocolSpec
 from batcert.specs.resolve import display_path
@@ -129,6 +130,15 @@ def _condition_results(conds: list[Condition], choice: Choice, search: Search,
                         search.coarse_metric[i].tolist()),
             diagnostics=_scalars(diag, i)))
     return out
+
+
+def body_warning(bat: BatSpec, protocol: ProtocolSpec, ball: BallSpec) -> list[str]:
+    """One line when the bat is made for the other game than the protocol's ball (a softball
+    bat under a baseball protocol); none when the bat file does not say its game (``body``)."""
+    if bat.body is None or bat.body == ball.body:
+        return []
+    return [f"bat {bat.name!r} is a {bat.body} bat, but protocol {protocol.id!r} tests with a "
+            f"{ball.body} ({ball.name}): a bat is certified with its own game's ball"]
 
 
 def _warnings(protocol: ProtocolSpec, conds: list[Condition], choice: Choice,
@@ -249,7 +259,8 @@ def _impact_steps(built: BuiltBat, p: ProtocolSpec, ball: BallSpec, engine: Engi
         conditions=_condition_results(conds, choice, search, final, diag, values, mp,
                                       ball.model.mass),
         inputs=inputs, batcert_version=__version__, created=created,
-        warnings=(_warnings(p, conds, choice, engine) + _barrel_warning(barrel, metric.display)
+        warnings=(body_warning(built.spec, p, ball) + _warnings(p, conds, choice, engine)
+                  + _barrel_warning(barrel, metric.display)
                   + _wall_warning(conds, diag)),
         extras=bat_dynamics(built, p.pivot, engine.models_barrel), barrel=barrel, model_offset=metric.model_offset,
         bat_identification=identification(built.spec))

@@ -18,11 +18,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from batcert.conventions import SOFTBALL_RADIUS
 from batcert.errors import Collector, InputError, Problem
 from batcert.physics.ball import BallModel
-from batcert.physics.balls import LAWS, ContactLaw, PowerLawHysteresis, TwoTimeViscoelastic, Viscoelastic
-from batcert.physics.balls.fit import BallFit, BallTest, FitError, check_given
-from batcert.physics.balls.fit_kept import cached_fit
+from batcert.physics.balls import LAWS, ContactLaw, PowerLawHysteresis, TwoTimeViscoelastic
+from batcert.physics.balls.fit import BallFit
+from batcert.specs.ball_fit import ball_tests, fitted, judge_given
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked
 from batcert.specs.schema import (
     Field,
@@ -38,6 +39,8 @@ from batcert.specs.schema import (
 )
 from batcert.specs.yamlio import LocatedList, load_yaml
 from batcert.units import DIMENSIONS, UnitError, parse_quantity, read_spread, split_uncertainty, uncertain
+
+__all__ = ["BALL_SCHEMA", "BallSpec", "ReferenceBat", "ball_tests", "load_ball"]
 
 
 @dataclass(frozen=True)
@@ -162,9 +165,6 @@ TESTS: dict[str, tuple[Kind, str]] = {
                     "Quasi-static force squeezing the ball between flat platens by a diametral "
                     "displacement (ASTM F1888: 0.25 in, slowly)."),
 }
-_KIND = {"cor": "cor", "cylinder_cor": "cylinder_cor", "peak_force": "peak_force",
-         "collision_time": "collision_time", "contact_time": "contact_time",
-         "compression": "compression"}
 
 
 def _read_flat(value: Any) -> float:
@@ -299,11 +299,10 @@ class BallSpec:
     def sha256(self) -> str:
         return self.source.sha256
 
-
-def ball_tests(tests: tuple[tuple[str, TestPoint], ...]) -> tuple[BallTest, ...]:
-    """The points as the fit takes them (each with its standard uncertainty)."""
-    return tuple(BallTest(_KIND[key], p.condition, float(p.value), float(getattr(p.value, "u", 0)),
-                          p.surface_diameter) for key, p in tests)
+    @property
+    def body(self) -> str:
+        """The game the ball is for, by its size (:data:`SOFTBALL_RADIUS`)."""
+        return "softball" if self.model.radius > SOFTBALL_RADIUS else "baseball"
 
 
 def load_ball(path: str | Path) -> BallSpec:
@@ -321,10 +320,10 @@ def load_ball(path: str | Path) -> BallSpec:
             c["k1"], c["alpha"], tuple(p.condition for p in cor), tuple(p.value for p in cor))
     elif all(c[n] is not None for n in _own(c["model"])):
         law = LAWS[c["model"]].law(*(c[n] for n in _own(c["model"])))
-        _judge_given(path, data, tests, float(mass), radius, law)
+        judge_given(path, tests, float(mass), radius, law)
     else:
         held = tuple((n, float(c[n])) for n in _own(c["model"]) if c[n] is not None)
-        fit = _fitted(path, data, tests, float(mass), radius, held, c["model"])
+        fit = fitted(path, data, tests, float(mass), radius, held, c["model"])
         law = fit.law
     model = BallModel(v["name"], mass, radius, law)
     reference = _reference(path, data, v["reference_bat"], fit) if v["reference_bat"] else None
@@ -352,48 +351,3 @@ def _reference(path, data, r: dict, fit: BallFit | None) -> ReferenceBat:
         raise InputError(problems)
     return ReferenceBat(str(found["bat"]), str(found["protocol"]), float(r["value"]),
                         float(r["value"].u), r["source"] or "", node.key_pos["value"][0])
-
-
-def _judge_given(path, data, tests, mass: float, radius: float, law) -> None:
-    """A law given whole is checked against the file's own tests (:func:`check_given`): one
-    it misses by many standard uncertainties is an input error at that test."""
-    try:
-        check_given(law, ball_tests(tests), mass, radius)
-    except FitError as exc:
-        key, p = tests[exc.test]
-        raise InputError([Problem(str(path), p.line, key, str(exc))]) from None
-
-
-def _fitted(path, data, tests, mass: float, radius: float, held=(),
-            law: str = Viscoelastic.name) -> BallFit:
-    """:func:`cached_fit` of the file's tests; its refusal as an input error at the test."""
-    problems = []
-    for key, p in tests:
-        if not getattr(p.value, "u", 0) > 0:
-            problems.append(Problem(str(path), p.line, key, "a fitted viscoelastic ball needs "
-                                    "every test's standard uncertainty ('0.546 +/- 0.018')"))
-    if problems:
-        raise InputError(problems)
-    try:
-        return cached_fit(ball_tests(tests), mass, radius, held, law)
-    except FitError as exc:
-        if exc.test is not None:
-            key, p = tests[exc.test]
-            raise InputError([Problem(str(path), p.line, key, str(exc))]) from None
-        if exc.parameter is not None:
-            line = data["contact"].key_pos.get(exc.parameter, (data.line, None))[0]
-            raise InputError([Problem(str(path), line, f"contact.{exc.parameter}",
-                                      str(exc))]) from None
-        line = data["contact"].key_pos.get("model", (data.line, None))[0]
-        message = str(exc) if exc.converged else f"{exc} ({_lines_of(tests)})"
-        raise InputError([Problem(str(path), line, "contact.model", message)]) from None
-
-
-def _lines_of(tests) -> str:
-    """Where the file's tests are, by key: ``cor at lines 6-9, collision_time at line 12``."""
-    where: dict[str, list[int]] = {}
-    for key, p in tests:
-        where.setdefault(key, []).extend([p.line] if p.line else [])
-    return ", ".join(f"{k} at line{'s' if min(v) < max(v) else ''} "
-                     f"{'-'.join(str(x) for x in sorted({min(v), max(v)}))}" if v else k
-                     for k, v in where.items())

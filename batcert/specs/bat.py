@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from batcert.conventions import DEFAULT_PIVOT
+from batcert.conventions import BODIES, DEFAULT_PIVOT
 from batcert.errors import Collector
 from batcert.physics.batmodel import Material
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked, pairs, spec_from
@@ -121,7 +121,7 @@ MEASURED_SCHEMA = Schema("measured properties", (
 
 
 def _check_bat(v: dict, data: Located, errors: Collector, path: str) -> None:
-    check_layup(v, data, errors)
+    check_layup(v, data, errors, length_blamed=_check_stations(v, data, errors))
     if v["layup"] is None and v["material"] is None:
         errors.add(data.line, "material", "required field is missing")
     if v["construction"] == "hollow" and v["wall"] is None and v["layup"] is None:
@@ -135,15 +135,41 @@ def _check_bat(v: dict, data: Located, errors: Collector, path: str) -> None:
         if v["construction"] == "solid" and measured.get(key) is not None:
             errors.add(lookup(data, "measured", key)[0], f"measured.{key}", "only a hollow bat "
                        "has a barrel to measure")
-    on_bat = f"stations must lie between the knob (0) and the tip " \
-             f"({to_us(v['length'], 'length'):.2f} in)"
-    z, d = v["profile"]
-    if z[-1] > v["length"] * (1 + 1e-9) or z[0] < 0:
-        errors.add(lookup(data, "profile")[0], "profile", on_bat)
+
+
+# Shorter than any bat a league or a test covers (tee-ball bats start at about 24 in): a bat
+# file's length below this, shorter than its own profile, is the length's mistake (a unit)
+SHORTEST_BAT = 0.5  # [m]
+
+
+def _check_stations(v: dict, data: Located, errors: Collector) -> bool:
+    """The profile's and the wall's stations lie on the bat, from the knob (0) to the tip (the
+    length). Stations (or layup spans) beyond an implausibly short length
+    (:data:`SHORTEST_BAT`) are the length's problem, at its line ("34 cm" for 34 in; returns
+    True); otherwise each list's, naming the length's line."""
+    length = v["length"]
+    lists = {"profile": v["profile"][0]}
     if isinstance(v["wall"], tuple):
-        wz, _ = v["wall"]
-        if wz[-1] > v["length"] * (1 + 1e-9) or wz[0] < 0:
-            errors.add(lookup(data, "wall")[0], "wall", on_bat)
+        lists["wall"] = v["wall"][0]
+    if v["layup"]:
+        lists["layup"] = [max(end for _, end, _ in spans_of(v["layup"], length))]
+    beyond = {k: z[-1] for k, z in lists.items() if z[-1] > length * (1 + 1e-9)}
+    length_line = lookup(data, "length")[0]
+    blame_length = bool(beyond) and length < SHORTEST_BAT
+    if blame_length:
+        reach = max(beyond.values())
+        errors.add(length_line, "length", f"{to_us(length, 'length'):.2f} in is shorter than "
+                   f"any bat ({to_us(SHORTEST_BAT, 'length'):.0f} in) and than the "
+                   f"{' and the '.join(beyond)}, which reach{'es' if len(beyond) == 1 else ''} "
+                   f"{to_us(reach, 'length'):.2f} in from the knob: is the length's unit right?")
+    on_bat = (f"stations must lie between the knob (0) and the tip (the length, "
+              f"{to_us(length, 'length'):.2f} in" + (f", line {length_line})" if length_line
+                                                      else ")"))
+    for key in ("profile", "wall"):
+        z = lists.get(key)
+        if z is not None and (z[0] < 0 or (key in beyond and not blame_length)):
+            errors.add(lookup(data, key)[0], key, on_bat)
+    return blame_length
 
 
 IDENTIFICATION_SCHEMA = Schema("bat identification", (
@@ -156,6 +182,8 @@ IDENTIFICATION_SCHEMA = Schema("bat identification", (
 BAT_SCHEMA = Schema("bat", (
     Field("name", label(), "Bat name shown in reports.", required=True),
     *HEADER_FIELDS,
+    Field("body", choice(*BODIES), "The game the bat is made for (its ball): a run under a "
+          "protocol whose ball is the other game's warns."),
     Field("construction", choice("solid", "hollow"), "Solid (wood) or hollow (metal, composite) "
           "barrel.", required=True),
     Field("length", quantity("length", minimum=0.3, maximum=1.5), "Overall length, knob end "
@@ -237,6 +265,7 @@ class BatSpec:
     reconcile: str  # density-profile | point-masses | none
     identification: dict | None = None  # maker, model, serial, lot (text; those given)
     layup: tuple = ()  # (start [m from knob], end [m], WallStack) spans; () for none
+    body: str | None = None  # baseball | softball; None when the file does not say
 
     @property
     def path(self) -> str:

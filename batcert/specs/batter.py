@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from batcert.conventions import BODIES
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked, spec_from
 from batcert.specs.schema import Field, Schema, choice, label, number, quantity, section, text
 from batcert.specs.yamlio import load_yaml
@@ -44,7 +45,7 @@ SWING_SCHEMA = Schema("swing", (
 BATTER_SCHEMA = Schema("batter", (
     Field("name", label(), "Profile name shown in reports.", required=True),
     *HEADER_FIELDS,
-    Field("body", choice("baseball", "softball"), "The game: which ball flies.", required=True),
+    Field("body", choice(*BODIES), "The game: which ball flies.", required=True),
     Field("ball", label(), "Shipped ball name or ball file path (relative to this file): the "
           "ball hit.", required=True),
     Field("pitch_speed", quantity("speed", minimum=0.0, maximum=60.0), "Pitch speed at the "

@@ -173,10 +173,11 @@ def spans_of(layup: list[dict], length: float) -> tuple[tuple[float, float, Wall
     return tuple(out)
 
 
-def check_layup(v: dict, data: Located, errors: Collector) -> None:
+def check_layup(v: dict, data: Located, errors: Collector, length_blamed: bool = False) -> None:
     """Cross-field checks of ``layup``: hollow bats only, spans on the bat and apart, walls the
     shell of revolution can carry (no shear coupling), and ``wall`` / ``material`` where the
-    spans leave part of the bat to them."""
+    spans leave part of the bat to them. ``length_blamed``: spans beyond the tip are already
+    the length's problem (an implausibly short bat)."""
     layup = v["layup"]
     if layup is None:
         return
@@ -193,7 +194,7 @@ def check_layup(v: dict, data: Located, errors: Collector) -> None:
     order = sorted(range(len(spans)), key=lambda i: spans[i][0])
     for i, (_start, end, stack) in enumerate(spans):
         at = lookup(data, "layup", i)[0]
-        if end > length * (1 + 1e-9):
+        if end > length * (1 + 1e-9) and not length_blamed:
             errors.add(at, f"layup[{i}].span", f"the span ends beyond the tip ({length:.4f} m)")
         for w, wall in enumerate(stack.walls):
             if laminate(wall).couples_shear():

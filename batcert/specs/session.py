@@ -1,6 +1,6 @@
 """A lab session file (YAML): the bat, the ball lot, the pivot, the instruments and the hits CSV
 (:mod:`batcert.specs.hits`) of a test; docs/lab-reduction.md documents it. A bare hits CSV gets a
-session of defaults (:func:`session_for_hits`).
+session of defaults (:func:`session_for_hits`; :func:`load_bare_hits` checks one alone).
 """
 
 from __future__ import annotations
@@ -10,9 +10,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from batcert.conventions import DEFAULT_PIVOT
-from batcert.errors import Collector
+from batcert.errors import Collector, InputError, Problem
 from batcert.specs.common import HEADER_FIELDS, Source, load_checked, sha256_of, spec_from
-from batcert.specs.hits import read_hits_bytes
+from batcert.specs.hits import COLUMNS, Hits, load_hits, read_hits_bytes
 from batcert.specs.schema import (
     Field,
     Schema,
@@ -165,6 +165,27 @@ class SessionSpec:
         return self.source.path
 
 
+def is_hits_csv(path: str | Path) -> bool:
+    """Whether ``path`` is a hits CSV by its name (``.csv``): the one kind of CSV batcert reads,
+    as ``batcert reduce`` tells a bare hits CSV from a session YAML."""
+    return Path(path).suffix.lower() == ".csv"
+
+
+def _bare_header(path: Path) -> tuple[bytes, int | None, str]:
+    """A bare hits CSV's bytes and its header line (its first line neither blank nor a
+    comment), with its 1-based number (None and empty when there is none)."""
+    raw = read_hits_bytes(path)
+    return raw, *next(((n + 1, ln) for n, ln in enumerate(decode_text(raw, str(path)).splitlines())
+                       if ln.strip() and not ln.lstrip().startswith("#")), (None, ""))
+
+
+def _header_end(head: str) -> str:
+    """The end a bare hits CSV's locations are measured from: the one its header names
+    (``impact_location [in from knob]``), else the tip."""
+    end = re.search(r"impact_location\s*\[[^\]]*\bfrom\s+(tip|knob|pivot)\s*\]", head)
+    return end.group(1) if end else "tip"
+
+
 def session_for_hits(csv_path: str | Path, bat: str, ball: str, pivot: float) -> SessionSpec:
     """A session for a bare hits CSV (``batcert reduce HITS.csv --bat BAT``): the bat given,
     the protocol's ball and pivot, locations from the end the CSV's header names (default the
@@ -172,15 +193,26 @@ def session_for_hits(csv_path: str | Path, bat: str, ball: str, pivot: float) ->
     path = Path(csv_path)
     data = Located()
     data.file, data.line, data.key_pos, data.value_pos = str(path), 1, {}, {}
-    raw = read_hits_bytes(path)
-    head = next((ln for ln in decode_text(raw, str(path)).splitlines()
-                 if ln.strip() and not ln.lstrip().startswith("#")), "")
-    end = re.search(r"impact_location\s*\[[^\]]*\bfrom\s+(tip|knob|pivot)\s*\]", head)
+    raw, _, head = _bare_header(path)
     defaults = {f.name: f.default for f in SESSION_SCHEMA.fields}
     return spec_from(SessionSpec, {**defaults, "name": f"hits {path.name}", "bat": bat,
                                    "ball": ball, "pivot": pivot, "hits": path.name,
-                                   "location_from": end.group(1) if end else "tip"},
+                                   "location_from": _header_end(head)},
                      source=Source(str(path), sha256_of(raw), data))
+
+
+def load_bare_hits(csv_path: str | Path) -> Hits:
+    """A bare hits CSV read as ``batcert reduce HITS.csv --bat BAT`` reads it (the session's
+    defaults: locations from the end its header names, no gate spacing), with every problem;
+    a CSV whose header names none of the hits columns is said to be no hits CSV."""
+    path = Path(csv_path)
+    _, line, head = _bare_header(path)
+    names = {cell.split("[")[0].strip() for cell in head.split(",")}
+    if head and not names & set(COLUMNS):
+        raise InputError([Problem(str(path), line, "", "not a hits CSV: batcert reads a CSV "
+                                  "only as a lab's hits (batcert reduce), and this header names "
+                                  f"none of their columns ({', '.join(COLUMNS)})")])
+    return load_hits(path, _header_end(head), None)
 
 
 def load_session(path: str | Path) -> SessionSpec:

@@ -36,6 +36,14 @@ class Parameter:
     tolerance: float  # default tolerance of `batcert design` [SI]
     unit: str = ""  # the unit of a plain number (``dimension`` None) as shown, e.g. "deg"
 
+    @property
+    def construction(self) -> bool:
+        """Whether the parameter changes the bat's construction or material (its shape, wall,
+        material or layup, or the measured hoop frequency its barrel is calibrated to): what
+        an engine without the bat's flexibility (the rigid one) sees only through the mass
+        properties, if at all."""
+        return self.changes == "geometry" or self.name == "hoop_frequency"
+
 
 class ParameterError(UsageProblem):
     """A parameter or value a sweep cannot use (exit 2, before any work)."""

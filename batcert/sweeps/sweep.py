@@ -239,6 +239,17 @@ def _notes(plan: Plan) -> list[str]:
     return notes
 
 
+def _construction_warning(plan: Plan) -> str | None:
+    """The engine's warning (:func:`batcert.engines.construction_warning`) when the sweep
+    varies what its results do not depend on, once for the sweep."""
+    from batcert.engines import construction_warning
+    varied = [a.name for a in plan.axes if a.parameter.construction]
+    text = construction_warning(plan.engine) if varied else None
+    if text is None:
+        return None
+    return f"{text} (varied: {', '.join(varied)}, which shows only in the mass properties, if at all)"
+
+
 def chunk_size(variants: int) -> int:
     """The variants of a chunk in a sweep of ``variants`` (module notes): 1 to 8 variants
     together take 67 to 38 ms per variant of a wall sweep, 16 and 32 together 43 and 52 ms
@@ -288,6 +299,9 @@ def collect(plan: Plan, rows: list[Row], nominal: NominalRun | None) -> SweepRes
             if not w.startswith("the barrel was not calibrated") and i not in seen.get(w, []):
                 seen.setdefault(w, []).append(i)
     warnings = [f"{w} ({_which(plan, idx)})" for w, idx in sorted(seen.items())]
+    blind = _construction_warning(plan)
+    if blind:
+        warnings.insert(0, blind)
     failed = sum(r["error"] is not None for r in ordered)
     if failed:
         warnings.insert(0, f"{failed} of {len(ordered)} variants have no result (see errors)")

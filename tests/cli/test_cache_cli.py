@@ -63,3 +63,57 @@ def test_a_cache_directory_set_to_a_project_folder_is_left_alone(batcert_cli, tm
     assert all(f.read_text() == text for f, text in mine.items())
     assert sorted(p.relative_to(project).as_posix() for p in project.rglob("*")) == [
         "README.md", "modes", "modes/notes.txt"]
+
+
+def _fill(root):
+    """Two kinds of entries made by the cache itself, a user's file and a link among them."""
+    import numpy as np
+
+    from batcert.cache import ArrayStore
+    for kind, key in (("modes", "a"), ("modes", "b"), ("barrels", "c")):
+        ArrayStore(kind, code=("batcert.cache",)).save(key, {"x": np.arange(1000.0)})
+    outside = root.parent / "outside.txt"
+    outside.write_text("not batcert's")
+    (root / "modes" / "notes.txt").write_text("keep me")
+    (root / "modes" / ("e" * 32 + ".arrays")).symlink_to(outside)
+    return outside
+
+
+def test_cache_shows_folder_size_entries_and_bound(batcert_cli, cache):
+    """Issue 40, item 14d: `batcert cache` (and `cache show`) says where the cache is, how
+    large, its entries per kind and the bound on each."""
+    empty = batcert_cli("cache")
+    assert empty.exit_code == 0 and "not made yet" in empty.stdout and not cache.exists()
+    _fill(cache)
+    shown = batcert_cli("cache", "show")
+    assert shown.exit_code == 0, shown.stderr
+    assert str(cache) in shown.stdout and "256.0 MiB per kind" in shown.stdout
+    assert all(len(line) <= 80 for line in shown.stdout.splitlines() if str(cache) not in line)
+    (data,) = json.loads(batcert_cli("cache", "show", "--json").stdout)["results"]
+    kinds = {k["kind"]: k for k in data["kinds"]}
+    assert data["batcerts"] and data["entries"] == 3 and data["root"] == str(cache)
+    assert (kinds["modes"]["entries"], kinds["modes"]["other_files"]) == (2, 1)
+    assert kinds["barrels"]["entries"] == 1 and kinds["barrels"]["limit"] == 256 * 2**20
+    assert data["bytes"] == sum(p.stat().st_size for p in cache.glob("*/*.arrays")
+                                if not p.is_symlink())
+
+
+def test_cache_clear_deletes_only_batcerts_own_entries(batcert_cli, cache):
+    outside = _fill(cache)
+    result = batcert_cli("cache", "clear")
+    assert result.exit_code == 0, result.stderr
+    assert result.stdout.startswith("removed 3 entries")
+    assert sorted(p.relative_to(cache).as_posix() for p in cache.rglob("*")) == [
+        "CACHEDIR.TAG", "barrels", "modes", "modes/" + "e" * 32 + ".arrays", "modes/notes.txt"]
+    assert outside.read_text() == "not batcert's"
+
+
+def test_cache_clear_refuses_a_folder_that_is_not_batcerts(batcert_cli, tmp_path, monkeypatch):
+    project = tmp_path / "project"
+    (project / "modes").mkdir(parents=True)
+    entry = project / "modes" / ("a" * 32 + ".arrays")  # a batcert name, but not its folder
+    entry.write_text("mine")
+    monkeypatch.setenv("BATCERT_CACHE_DIR", str(project))
+    result = batcert_cli("cache", "clear")
+    assert result.exit_code == 3 and "not batcert's cache" in result.stderr
+    assert entry.read_text() == "mine"

@@ -37,6 +37,16 @@ def test_mlb_json_shape(batcert_cli):
     assert ash["length"]["value"] == 0.86 and ash["length"]["limit"] == 42 * 0.0254
 
 
+def test_rigid_engine_warning_is_the_engines_own(batcert_cli):
+    """The league's rigid-engine warning is the engine's (one text for league, sweep and
+    design), once per bat."""
+    from batcert.engines.rigid import RigidEngine
+    result = batcert_cli("league", "ncaa", ALU, "--engine", "rigid", "--json", "--no-reports")
+    data = result_of(result.stdout, "league")
+    (bat,) = data["bats"]
+    assert bat["warnings"].count(RigidEngine.construction_warning) == 1
+
+
 def test_passing_bats_exit_0(batcert_cli):
     # MLB needs no protocol run, so the default engine is not used
     result = batcert_cli("league", "mlb", ASH, R161, "--no-reports")

@@ -355,3 +355,31 @@ def test_the_help_and_the_docs_list_every_parameter_of_the_registry(batcert_cli)
     assert [r[0] for r in rows] == list(PARAMETERS)
     assert all((p.dimension or "number").replace("_", " ") == unit
                for (_, unit), p in zip(rows, PARAMETERS.values(), strict=True))
+
+
+@pytest.mark.parametrize("command, varied", [
+    (("sweep", "aluminium-34", "-p", "ncaa-bbcor", "--vary", "wall=60%:140%:5"), "wall"),
+    (("design", "ash-34", "-p", "ncaa-bbcor", "--solve", "density", "--points", "3"), "density"),
+])
+def test_rigid_engine_varying_the_construction_warns_once(batcert_cli, command, varied):
+    """Issue 40, item 4: the rigid engine does not see a wall, a material or a barrel; a sweep
+    or design of one says so once, in one line, as `batcert league` does (the same text,
+    the engine's), on stderr and in the JSON."""
+    from batcert.engines.rigid import RigidEngine
+    text = RigidEngine.construction_warning
+    assert text
+    result = batcert_cli(*command, "--engine", "rigid", "--json")
+    assert result.exit_code in (0, 1), result.stderr
+    data = result_of(result.stdout, command[0])
+    assert [w for w in data["warnings"] if text in w] == [
+        f"{text} (varied: {varied}, which shows "
+        "only in the mass properties, if at all)"]
+    lines = [ln for ln in result.stderr.splitlines() if text[:40] in ln]
+    assert len(lines) == 1 and lines[0].startswith("  warning: ")
+
+
+def test_rigid_engine_varying_a_speed_does_not_warn_of_the_construction(batcert_cli):
+    from batcert.engines.rigid import RigidEngine
+    result = batcert_cli(*SWEEP, "--json")
+    assert result.exit_code == 0, result.stderr
+    assert RigidEngine.construction_warning[:40] not in result.stderr

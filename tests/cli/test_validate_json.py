@@ -46,3 +46,29 @@ def test_a_protocol_with_four_problems_shows_them_in_one_round(batcert_cli, tmp_
     [entry] = results(res.stdout, "validate")
     fields = [p["field"] for p in entry["problems"]]
     assert fields == ["pivot", "ball", "conditions[0].pitch_speed", "metric"]
+
+
+def test_a_hits_csv_is_validated_as_reduce_reads_it(batcert_cli, tmp_path):
+    """Issue 40, item 14a: a hits CSV was parsed as YAML ('the top level must be a mapping');
+    it is a hits file, checked as `batcert reduce HITS.csv --bat BAT` reads it, every problem
+    at its line and column."""
+    good = REPO / "examples" / "lab" / "synthetic-scatter.csv"
+    bad = tmp_path / "hits.csv"
+    bad.write_text("hit,ball,inbound_speed [m/s],rebound_speed [m/s],"
+                   "impact_location [in from tip],valid\n"
+                   "1,B1,60,abc,4.5,yes\n"
+                   "2,B1,0.1,10,4.5,maybe\n", encoding="utf-8")
+    res = batcert_cli("validate", good, bad, "--json")
+    assert res.exit_code == 3
+    files = results(res.stdout, "validate")
+    assert files[0] == {"file": str(good), "kind": "hits", "ok": True, "problems": []}
+    assert [(p["line"], p["column"], p["field"]) for p in files[1]["problems"]] == [
+        (2, 9, "rebound_speed"), (3, 6, "inbound_speed"), (3, 17, "valid")]
+    assert batcert_cli("validate", good).stdout == f"ok  {good} (hits)\n"
+
+
+def test_a_csv_that_is_not_hits_says_so(batcert_cli):
+    res = batcert_cli("validate", REPO / "bats" / "r161-profile.csv", "--json")
+    assert res.exit_code == 3
+    ((problem,),) = [f["problems"] for f in results(res.stdout, "validate")]
+    assert problem["line"] == 6 and problem["message"].startswith("not a hits CSV")

@@ -58,6 +58,18 @@ CASES: dict[str, list[Expect]] = {
         Expect(13, "layup[0].walls[0].plies[2]", "a ply's thickness must be 0.01-20 mm"),
     ],
     "bat-layup-on-solid.yaml": [Expect(6, "layup", "only a hollow bat has a wall to lay up")],
+    # issue 40, item 14b: 34 cm for 34 in was reported at the profile and the wall
+    "bat-length-in-cm.yaml": [
+        Expect(5, "length", "13.39 in is shorter than any bat (20 in) and than the profile and "
+                            "the wall, which reach 34.00 in from the knob: is the length's unit "
+                            "right?"),
+    ],
+    "bat-profile-beyond-tip.yaml": [
+        Expect(5, "profile", "stations must lie between the knob (0) and the tip (the length, "
+                             "33.00 in, line 4)"),
+        Expect(10, "wall", "stations must lie between the knob (0) and the tip (the length, "
+                           "33.00 in, line 4)"),
+    ],
     "bat-layup-overlap.yaml": [Expect(10, "layup[1].span", "overlaps span 0")],
     # issue 40 item 6c: a span that holds no slice's centre was an IndexError in the model
     "bat-layup-span-narrower-than-a-slice.yaml": [

@@ -205,7 +205,7 @@ def test_profile_beyond_the_tip_is_refused(tmp_path, fixtures_dir):
     with pytest.raises(InputError) as exc:
         load_bat(path)
     (problem,) = exc.value.problems
-    assert problem.field == "profile" and "between the knob (0) and the tip (34.00 in)" in (
+    assert problem.field == "profile" and "between the knob (0) and the tip (the length, 34.00 in, line 4)" in (
         problem.message)
     assert Path(problem.file) == path and problem.line == 5  # the `profile:` key
 

@@ -9,6 +9,10 @@ shells, :mod:`batcert.physics.barrel`; ``modes``: bats' beam modes; ``ball-fits`
 balls fitted to their tests; ``ball-walls``: balls' rigid-wall tables,
 :mod:`batcert.physics.balls`; ``compressions``: barrels' compression stiffness).
 
+How large it grows: each kind's folder holds at most :data:`KIND_LIMIT` bytes of entries (256
+MiB), the least recently used going first; ``batcert cache`` shows the folders, their sizes and
+that bound, and ``batcert cache clear`` empties them (:mod:`batcert.cache.folder`).
+
 What the cache may touch. The top folder is batcert's only when it holds batcert's
 ``CACHEDIR.TAG`` (the tag backup tools honour), written when batcert makes the folder or adopts
 an empty one or one of only its entries. A folder holding anything else, or a kind's folder
@@ -24,12 +28,22 @@ from __future__ import annotations
 
 import contextlib
 import os
-import re
 import stat
 import tempfile
 import warnings
 from collections.abc import Callable, Iterator
 from pathlib import Path
+
+from batcert.cache.folder import (
+    KIND_LIMIT,
+    TAG,
+    TAG_NAME,
+    cache_root,
+    is_batcerts,
+    own,
+    remove,
+    trim,
+)
 
 
 class CacheWarning(UserWarning):
@@ -66,26 +80,6 @@ def warnings_as_lines(say: Callable[[str], None]) -> Iterator[None]:
         yield
 
 
-TAG_NAME = "CACHEDIR.TAG"
-TAG = "Signature: 8a477f597d28d172789f06886806bc55\n# a cache directory tag, written by batcert\n"
-# the files batcert writes in a kind's folder: entries, their temporary files, Jinja's templates
-ENTRY_NAME = re.compile(r"[0-9a-f]{32}\.arrays")
-TEMP_NAME = re.compile(r"\.batcert-[A-Za-z0-9_]+\.tmp")
-OWN_NAMES = (ENTRY_NAME, TEMP_NAME, re.compile(r"__jinja2_[0-9a-f]+\.cache"))
-STALE_TEMP = 24 * 3600.0  # [s] a temporary file older than this was left by a killed writer
-
-
-def cache_root() -> Path:
-    """The cache directory's top folder (not made, not checked)."""
-    return Path(os.environ.get("BATCERT_CACHE_DIR") or os.path.join(
-        os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
-        "batcert"))
-
-
-def _own(name: str) -> bool:
-    return any(p.fullmatch(name) for p in OWN_NAMES)
-
-
 def _only_ours(root: Path) -> bool:
     """Whether ``root`` holds nothing but folders of batcert's own entries (no link followed)."""
     try:
@@ -96,7 +90,7 @@ def _only_ours(root: Path) -> bool:
                 if child.is_symlink() or not child.is_dir(follow_symlinks=False):
                     return False
                 with os.scandir(child.path) as entries:
-                    if any(e.is_symlink() or not _own(e.name) for e in entries):
+                    if any(e.is_symlink() or not own(e.name) for e in entries):
                         return False
     except OSError:
         return False
@@ -110,7 +104,7 @@ def _claim(root: Path) -> bool:
     try:
         if str(root) in _CLAIMED and tag.is_file():
             return True
-        if tag.is_file() and "batcert" in tag.read_text(errors="replace"):
+        if is_batcerts(root):
             _CLAIMED.add(str(root))
             return True
         root.mkdir(parents=True, exist_ok=True, mode=0o700)
@@ -215,7 +209,7 @@ def disk_stores():
 
 class ArrayStore:
     """Named sets of numpy arrays kept as files in :func:`cache_dir` ``(kind)``, least recently
-    used first out once they hold more than ``limit`` bytes.
+    used first out once they hold more than ``limit`` bytes (:data:`KIND_LIMIT` by default).
 
     An entry's file name folds the caller's key with :func:`code_fingerprint` of ``code``, so
     that a changed computation never reads what an older one stored (no code, no store).
@@ -229,7 +223,7 @@ class ArrayStore:
 
     SUFFIX = ".arrays"
 
-    def __init__(self, kind: str, code: Fingerprint | tuple = (), limit: int = 256 * 2**20):
+    def __init__(self, kind: str, code: Fingerprint | tuple = (), limit: int = KIND_LIMIT):
         self.kind, self.limit = kind, int(limit)
         self.code = code if isinstance(code, Fingerprint) else Fingerprint(tuple(code))
 
@@ -300,40 +294,12 @@ class ArrayStore:
                 _remove(tmp)
 
     def _trim(self, where: Path) -> None:
-        """Least recently used entries out until the folder's entries hold at most ``limit``
-        bytes; a writer's temporary file older than :data:`STALE_TEMP` out. Only batcert's own
-        names, only regular files (a link is never followed nor removed)."""
-        import time
-        entries, now = [], time.time()
-        try:
-            with os.scandir(where) as it:
-                listing = list(it)
-        except OSError:
-            return
-        for p in listing:
-            try:
-                st = p.stat(follow_symlinks=False)
-            except OSError:
-                continue
-            if not stat.S_ISREG(st.st_mode):
-                continue
-            if ENTRY_NAME.fullmatch(p.name):
-                entries.append((st.st_mtime, st.st_size, p.path))
-            elif TEMP_NAME.fullmatch(p.name) and now - st.st_mtime > STALE_TEMP:
-                _remove(p.path)
-        total = sum(size for _, size, _ in entries)
-        for _, size, p in sorted(entries):
-            if total <= self.limit:
-                break
-            if _remove(p):
-                total -= size
+        """Least recently used entries out until the folder holds at most ``limit`` bytes of
+        them (:func:`batcert.cache.folder.trim`: only batcert's own names, never a link)."""
+        trim(where, self.limit)
 
 
-def _remove(path: str) -> bool:
-    with contextlib.suppress(OSError):
-        os.unlink(path)
-        return True
-    return False
+_remove = remove
 
 
 def damaged(path: Path | str, why: object) -> None:

@@ -52,8 +52,21 @@ def clean(argv, result, out: Path, where: Path, expect: str = "either") -> None:
 
 
 def files_in(directory: Path) -> list[str]:
-    return sorted(str(p.relative_to(directory)) for p in directory.rglob("*")) \
-        if directory.exists() else []
+    """What a reader sees under ``directory`` (a report set's own folder, ``.batcert-sets``,
+    is batcert's: :func:`sets_are_clean` checks it)."""
+    return sorted(str(p.relative_to(directory)) for p in directory.rglob("*")
+                  if ".batcert-sets" not in p.parts) if directory.exists() else []
+
+
+def sets_are_clean(directory: Path) -> bool:
+    """Every ``.batcert-sets`` under ``directory`` holds only its stems' current links and the
+    set folders they show (no set folder or temporary link left by a writer)."""
+    for sets in directory.rglob(".batcert-sets"):
+        current = {c.name for c in sets.iterdir() if c.name.endswith(".current")}
+        shown = {os.readlink(sets / c) for c in current}
+        if {p.name for p in sets.iterdir()} != current | shown:
+            return False
+    return True
 
 
 def lab_dir(where: Path) -> Path:
@@ -204,6 +217,7 @@ def test_two_writers_one_out(cid, tmp_path):
         assert "Traceback" not in stdout + stderr, stderr[-2000:]
         assert proc.returncode in (0, 1), (argv, proc.returncode, stderr[-500:])
     names = files_in(out)
+    assert sets_are_clean(out), files_in(out)
     stems: dict[str, set[str]] = {}
     for n in names:
         stems.setdefault(Path(n).stem, set()).add(Path(n).suffix)

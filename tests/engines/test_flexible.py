@@ -512,8 +512,9 @@ def test_agrees_with_reference_integration_solid(r161):
                                                              ("free", 0.02, "compression"),
                                                              ("pinned", 0.0, "relative-speed")])
 def test_agrees_with_reference_integration_hollow(support, loss_factor, ball_loss):
-    # The hollow bat (beam and shell modes) against solve_ivp (rtol 1e-9), 2.0 mm wall, 16
-    # impacts from the taper (0.40 m) to the tip. Stationary bat at 60 m/s pinned, or the free
+    # The hollow bat (beam and shell modes) against solve_ivp (rtol 1e-9), 2.0 mm wall, 8
+    # impacts from the taper (0.40 m) to the tip (16 before; the taper's four, where the
+    # difference is largest, kept, the barrel's twelve thinned to four: CI's time). Stationary bat at 60 m/s pinned, or the free
     # bat swung at game speeds with every mode damped (loss factor 0.02). Within 0.1 % of the
     # exit speed (brief); measured < 3e-4 of it (the largest in the taper, where the exit speed
     # is lowest); contact times within 1 %.
@@ -521,7 +522,7 @@ def test_agrees_with_reference_integration_hollow(support, loss_factor, ball_los
     # not depend on the cut, and at 12 kHz solve_ivp takes 2-3 minutes a case)
     bat = hollow_bat(2.0e-3, loss_factor=loss_factor)
     speeds = CANNON if support == "pinned" else GAME
-    z = np.concatenate([[0.40, 0.45, 0.50, 0.54], np.linspace(0.56, 0.85, 12)])
+    z = np.concatenate([[0.40, 0.45, 0.50, 0.54], np.linspace(0.56, 0.85, 4)])
     out = solve(bat, z, speeds, support, ball_loss=ball_loss, shell_max_frequency=10_000.0)
     modes = cached_modes(bat, support, PIVOT, DEFAULT_MODES)
     ref = np.array([reference_impact(bat, BALL, PIVOT, support, zi, *speeds, modes, rtol=1e-9,

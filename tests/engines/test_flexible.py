@@ -514,10 +514,10 @@ def test_agrees_with_reference_integration_solid(r161):
 def test_agrees_with_reference_integration_hollow(support, loss_factor, ball_loss):
     # The hollow bat (beam and shell modes) against solve_ivp (rtol 1e-9), 2.0 mm wall, 8
     # impacts from the taper (0.40 m) to the tip (16 before; the taper's four, where the
-    # difference is largest, kept, the barrel's twelve thinned to four: CI's time). Stationary bat at 60 m/s pinned, or the free
-    # bat swung at game speeds with every mode damped (loss factor 0.02). Within 0.1 % of the
-    # exit speed (brief); measured < 3e-4 of it (the largest in the taper, where the exit speed
-    # is lowest); contact times within 1 %.
+    # difference is largest, kept, the barrel's twelve thinned to four: CI's time).
+    # Stationary bat at 60 m/s pinned, or the free bat swung at game speeds with every mode
+    # damped (loss factor 0.02). Within 0.1 % of the exit speed (brief); measured < 3e-4 of it
+    # (the largest in the taper, where the exit speed is lowest); contact times within 1 %.
     # Shell modes to 10 kHz in both (the engine's default before issue 39; the agreement does
     # not depend on the cut, and at 12 kHz solve_ivp takes 2-3 minutes a case)
     bat = hollow_bat(2.0e-3, loss_factor=loss_factor)

@@ -37,6 +37,8 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
+from batcert.reports.durable import fsync_dir, write_synced
+
 __all__ = ["recover", "write_set"]
 
 JOURNAL_PREFIX = ".batcert-set."
@@ -94,7 +96,7 @@ def write_set(directory: Path, files: dict[str, bytes], modes: dict[str, int]) -
                 _write_journal(directory, journal, "rollback", entries)
                 _roll_back(directory, entries)
                 _remove(journal)
-                _fsync_dir(directory)
+                fsync_dir(directory)
             raise
         _finish(directory, journal, entries)
 
@@ -134,7 +136,7 @@ def _recover_locked(directory: Path) -> None:
             _remove(directory / name)
     from batcert.reports.linkset import clean
     clean(directory)
-    _fsync_dir(directory)
+    fsync_dir(directory)
 
 
 def _finish(directory: Path, journal: Path, entries: list[_Entry]) -> None:
@@ -143,12 +145,12 @@ def _finish(directory: Path, journal: Path, entries: list[_Entry]) -> None:
     for entry in entries:
         if (directory / entry.staged).exists():
             os.replace(directory / entry.staged, directory / entry.target)
-    _fsync_dir(directory)
+    fsync_dir(directory)
     for entry in entries:
         if entry.backup:
             _remove(directory / entry.backup)
     _remove(journal)
-    _fsync_dir(directory)
+    fsync_dir(directory)
 
 
 def _roll_back(directory: Path, entries: list[_Entry]) -> None:
@@ -162,7 +164,7 @@ def _roll_back(directory: Path, entries: list[_Entry]) -> None:
         elif not entry.backup and not staged.exists():
             _remove(target)  # a new file that was moved in
         _remove(staged)
-    _fsync_dir(directory)
+    fsync_dir(directory)
 
 
 def _discard(directory: Path, entries: list[_Entry], journal: Path) -> None:
@@ -181,34 +183,24 @@ def _write_journal(directory: Path, journal: Path, state: str, entries: list[_En
                        for e in entries]}
     tmp = journal.with_name(journal.name + ".tmp")
     try:
-        _write_synced(tmp, (json.dumps(doc, indent=1) + "\n").encode(), os.O_CREAT)
+        write_synced(tmp, (json.dumps(doc, indent=1) + "\n").encode(), os.O_CREAT)
         os.replace(tmp, journal)
     except BaseException:
         _remove(tmp)
         raise
-    _fsync_dir(directory)
+    fsync_dir(directory)
 
 
 def _stage(directory: Path, name: str, data: bytes, mode: int) -> str:
     """Write ``data`` to a fsynced hidden file next to ``name``; return its name."""
     tmp = Path(_reserve(directory, f".{name}.{TAG}", ".tmp"))
     try:
-        _write_synced(tmp, data)
+        write_synced(tmp, data)
         os.chmod(tmp, mode)
     except BaseException:
         _remove(tmp)
         raise
     return tmp.name
-
-
-def _write_synced(path: Path, data: bytes, flags: int = 0) -> None:
-    """``data`` as the whole content of ``path`` (``flags``: os.O_CREAT where it may not exist
-    yet), flushed and fsynced; never through a link."""
-    fd = os.open(path, os.O_WRONLY | os.O_TRUNC | os.O_NOFOLLOW | flags, 0o600)
-    with os.fdopen(fd, "wb") as fh:
-        fh.write(data)
-        fh.flush()
-        os.fsync(fh.fileno())
 
 
 def _backup(directory: Path, name: str) -> str | None:
@@ -268,19 +260,5 @@ def _locked(directory: Path) -> Iterator[None]:
         except (ImportError, OSError):
             pass
         yield
-    finally:
-        os.close(fd)
-
-
-def _fsync_dir(directory: Path) -> None:
-    """Make the renames durable (POSIX); silently skipped where directories cannot be opened."""
-    try:
-        fd = os.open(directory, os.O_RDONLY)
-    except OSError:
-        return
-    try:
-        os.fsync(fd)
-    except OSError:
-        pass
     finally:
         os.close(fd)

@@ -33,6 +33,8 @@ import secrets
 import shutil
 from pathlib import Path
 
+from batcert.reports.durable import fsync_dir, write_synced
+
 __all__ = ["SETS", "clean", "usable", "write_linked"]
 
 SETS = ".batcert-sets"  # the folder that holds the sets, in the reports' directory
@@ -93,10 +95,10 @@ def _switch(directory: Path, sets: Path, stem: str, files: dict[str, bytes],
             for kept in os.listdir(old):
                 if kept not in files:
                     _carry(old / kept, new / kept)
-        _fsync(new)
+        fsync_dir(new)
         for name in files:
             _link_name(directory, stem, name)
-        _fsync(directory)
+        fsync_dir(directory)
         _replace_link(sets, current, new.name)  # the switch
     except BaseException:
         shutil.rmtree(new, ignore_errors=True)
@@ -123,14 +125,14 @@ def _adopt(directory: Path, sets: Path, stem: str, current: Path,
                     _carry(shown / kept, folder / kept)
         for name in plain:
             _carry(directory / name, folder / name)
-        _fsync(folder)
+        fsync_dir(folder)
         _replace_link(sets, current, folder.name)
     except BaseException:
         shutil.rmtree(folder, ignore_errors=True)
         raise
     for name in plain:
         _link_name(directory, stem, name)
-    _fsync(directory)
+    fsync_dir(directory)
     if shown is not None:
         shutil.rmtree(shown, ignore_errors=True)
     return folder
@@ -154,8 +156,17 @@ def _link_name(directory: Path, stem: str, name: str) -> None:
     with contextlib.suppress(OSError):
         if os.readlink(path) == want:
             return
-    tmp = directory / f".{name}.batcert-{secrets.token_hex(4)}.tmp"
-    os.symlink(want, tmp)
+    _put_link(want, path, directory / f".{name}.batcert-{secrets.token_hex(4)}.tmp")
+
+
+def _replace_link(sets: Path, current: Path, target: str) -> None:
+    _put_link(target, current, sets / f"{current.name}.{secrets.token_hex(4)}.tmp")
+    fsync_dir(sets)
+
+
+def _put_link(target: str, path: Path, tmp: Path) -> None:
+    """``path`` a link to ``target`` in one rename (made as ``tmp`` first, removed on failure)."""
+    os.symlink(target, tmp)
     try:
         os.replace(tmp, path)
     except BaseException:
@@ -164,24 +175,9 @@ def _link_name(directory: Path, stem: str, name: str) -> None:
         raise
 
 
-def _replace_link(sets: Path, current: Path, target: str) -> None:
-    tmp = sets / f"{current.name}.{secrets.token_hex(4)}.tmp"
-    os.symlink(target, tmp)
-    try:
-        os.replace(tmp, current)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
-    _fsync(sets)
-
-
 def _write(path: Path, data: bytes, mode: int) -> None:
-    fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o600)
-    with os.fdopen(fd, "wb") as fh:
-        fh.write(data)
-        fh.flush()
-        os.fsync(fh.fileno())
+    """A new file of a new set folder, durable, with the set's permission bits."""
+    write_synced(path, data, os.O_CREAT | os.O_EXCL)
     os.chmod(path, mode)
 
 
@@ -212,16 +208,3 @@ def clean(directory: Path) -> None:
             entry.unlink()
         elif _SET_DIR.match(entry.name) and entry.name not in shown and not entry.is_symlink():
             shutil.rmtree(entry, ignore_errors=True)
-
-
-def _fsync(folder: Path) -> None:
-    try:
-        fd = os.open(folder, os.O_RDONLY)
-    except OSError:
-        return
-    try:
-        os.fsync(fd)
-    except OSError:
-        pass
-    finally:
-        os.close(fd)

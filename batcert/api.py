@@ -75,31 +75,28 @@ def _loaded_types():
     return LoadedBat, ProtocolInputs
 
 
-def _bat(bat, name: str = "bat") -> LoadedBat:
-    """A loaded bat from a name, a path or a loaded bat; a protocol's name given as the bat
-    (arguments swapped) is said to be one."""
-    from batcert.commands.inputs import load_bat_any
-    from batcert.specs.resolve import NotFound
-    value = args.name_or_path(name, bat, "bat", _loaded_types()[0])
-    if not isinstance(value, str):
-        return value
-    try:
-        return load_bat_any(value)
-    except NotFound:
-        _swapped(name, value, "bat", "protocol")
-        raise
+def _bat(bat) -> LoadedBat:
+    from batcert.commands.inputs import LoadedBat, load_bat_any
+    return _loaded(bat, "bat", "protocol", LoadedBat, load_bat_any)
 
 
-def _protocol(protocol, name: str = "protocol") -> ProtocolInputs:
-    from batcert.commands.inputs import load_protocol_any
+def _protocol(protocol) -> ProtocolInputs:
+    from batcert.commands.inputs import ProtocolInputs, load_protocol_any
+    return _loaded(protocol, "protocol", "bat", ProtocolInputs, load_protocol_any)
+
+
+def _loaded(value, kind: str, other: str, loaded: type, load):
+    """A loaded ``kind`` (bat or protocol) from a name, a path or what ``load_<kind>`` returned
+    (an instance of ``loaded``); a shipped ``other`` given in its place (arguments swapped) is
+    said to be one."""
     from batcert.specs.resolve import NotFound
-    value = args.name_or_path(name, protocol, "protocol", _loaded_types()[1])
-    if not isinstance(value, str):
-        return value
+    read = args.name_or_path(kind, value, kind, loaded)
+    if not isinstance(read, str):
+        return read
     try:
-        return load_protocol_any(value)
+        return load(read)
     except NotFound:
-        _swapped(name, value, "protocol", "bat")
+        _swapped(kind, read, kind, other)
         raise
 
 

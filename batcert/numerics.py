@@ -103,6 +103,9 @@ def student_t_cdf(t: float, dof: float) -> float:
     return 1.0 - tail if t >= 0 else tail
 
 
+LARGE_DOF = 1e6  # degrees of freedom above which the t quantile is its expansion in 1/dof
+
+
 def student_t_quantile(p: float, dof: float) -> float:
     """The ``p`` quantile of Student's t with ``dof`` > 0 degrees of freedom (``math.inf``:
     the normal's), to about 1e-12 relative: Newton's method on :func:`student_t_cdf` from the
@@ -112,6 +115,13 @@ def student_t_quantile(p: float, dof: float) -> float:
     z = NormalDist().inv_cdf(p)
     if math.isinf(dof):
         return z
+    if dof > LARGE_DOF:  # Fisher's expansion in 1/dof (Abramowitz & Stegun 26.7.5), its next
+        # term about 1e-20 here; the CDF's own evaluation loses digits as dof grows
+        g1 = (z**3 + z) / 4
+        g2 = (5 * z**5 + 16 * z**3 + 3 * z) / 96
+        g3 = (3 * z**7 + 19 * z**5 + 17 * z**3 - 15 * z) / 384
+        inv = 1.0 / dof  # its powers underflow to 0 where dof's would overflow
+        return z + inv * (g1 + inv * (g2 + inv * g3))
     if p < 0.5:
         return -student_t_quantile(1 - p, dof)
     if p == 0.5:
@@ -148,8 +158,8 @@ def _log_gamma_half_ratio(a: float) -> float:
     if a < 100:
         return math.lgamma(a + 0.5) - math.lgamma(a)
     # from Stirling's series of each (Abramowitz & Stegun 6.1.41); the next term is ~a^-9
-    return (0.5 * math.log(a) - 1 / (8 * a) + 1 / (192 * a**3) - 1 / (640 * a**5)
-            + 17 / (14336 * a**7))
+    inv = 1.0 / a  # powers of 1/a, which underflow to 0 where a's powers would overflow
+    return (0.5 * math.log(a) - inv / 8 + inv**3 / 192 - inv**5 / 640 + 17 * inv**7 / 14336)
 
 
 def _incomplete_beta(a: float, b: float, x: tuple[float, float], y: tuple[float, float]

@@ -9,6 +9,7 @@ import numpy as np
 
 from batcert.commands.inputs import ProtocolInputs, load_protocol_any
 from batcert.lab.certify import DECISION_RULES, MC_DRAWS, Certified, certify, guard_band
+from batcert.lab.lot import ReferenceSession, with_session_lot
 from batcert.lab.session import LabSession, load_lab_session
 from batcert.model.break_in import breaks_in
 from batcert.results.lab import (
@@ -102,10 +103,10 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
     gives the ball and the pivot)."""
     pin = load_protocol_any(protocol)
     p = pin.protocol
-    session = _session(session_path, pin, bat)
+    session, reference = with_session_lot(_session(session_path, pin, bat), p)
     limit = p.limit.max + p.limit.tolerance if p.limit else None
     red, c = certify(session, p, limit)
-    barrel_fits, barrel_warnings = _barrel_fits(session, p, pin.ball, engine, c)
+    barrel_fits, barrel_warnings = _barrel_fits(session, p, session.ball, engine, c)
     margin, verdict = decide(c.value, p.limit, guard_band(decision_rule, c.expanded))
     break_in = _break_in(session, p)
     if break_in is not None and not break_in.complete:
@@ -136,12 +137,12 @@ def run_reduce(session_path: str, protocol: str, decision_rule: str = "simple",
         ball_mass=session.ball.model.mass, pivot=spec.pivot, scan=_scan(session, c),
         hits=_hits(session, red, c),
         warnings=c.warnings + barrel_warnings + _record_warnings(session, bat_spec, p),
-        inputs=_inputs(session, p), batcert_version=__version__, created=utc_now(),
+        inputs=_inputs(session, p, reference), batcert_version=__version__, created=utc_now(),
         lab=_lab(spec), protocol_reference=p.reference, protocol_version=p.version,
         speed_unit=h.speed_unit,
         barrel_fits=barrel_fits,
-        model=_model(session, p, pin.ball, engine, location_from_tip, c.value),
-        break_in=break_in)
+        model=_model(session, p, session.ball, engine, location_from_tip, c.value),
+        break_in=break_in, lot_calibration=_lot_calibration(session.ball, reference))
 
 
 def _lab(spec) -> dict:
@@ -211,16 +212,43 @@ def _scan(session: LabSession, c: Certified) -> list[LabLocation]:
                         loc.n_valid, loc.mean, loc.std) for loc in c.scan]
 
 
-def _inputs(session: LabSession, p: ProtocolSpec) -> list[dict[str, str]]:
-    """The files the certificate rests on: session, hits, bat, ball and protocol, hashed."""
+def _inputs(session: LabSession, p: ProtocolSpec,
+            reference: ReferenceSession | None) -> list[dict[str, str]]:
+    """The files the certificate rests on: session, hits, bat, ball and protocol, hashed; and
+    the reference bat's session, hits and bat when it calibrates the lot."""
     spec, h, bat = session.spec, session.hits, session.built.spec
-    return [{"role": "session", "name": spec.name, "path": display_path(spec.path),
-             "sha256": spec.source.sha256},
-            {"role": "hits", "name": spec.hits, "path": display_path(h.path), "sha256": h.sha256},
-            {"role": "bat", "name": bat.name, "path": display_path(bat.path), "sha256": bat.sha256},
-            {"role": "ball", "name": session.ball.name, "path": display_path(session.ball.path),
-             "sha256": session.ball.sha256},
-            {"role": "protocol", "name": p.id, "path": display_path(p.path), "sha256": p.sha256}]
+    out = [{"role": "session", "name": spec.name, "path": display_path(spec.path),
+            "sha256": spec.source.sha256},
+           {"role": "hits", "name": spec.hits, "path": display_path(h.path), "sha256": h.sha256},
+           {"role": "bat", "name": bat.name, "path": display_path(bat.path), "sha256": bat.sha256},
+           {"role": "ball", "name": session.ball.name, "path": display_path(session.ball.path),
+            "sha256": session.ball.sha256},
+           {"role": "protocol", "name": p.id, "path": display_path(p.path), "sha256": p.sha256}]
+    if reference is not None:
+        r = reference.session
+        out += [{"role": "reference session", "name": r.spec.name,
+                 "path": display_path(r.spec.path), "sha256": r.spec.source.sha256},
+                {"role": "reference hits", "name": r.spec.hits, "path": display_path(r.hits.path),
+                 "sha256": r.hits.sha256},
+                {"role": "reference bat", "name": r.built.spec.name,
+                 "path": display_path(r.built.spec.path), "sha256": r.built.spec.sha256}]
+    return out
+
+
+def _lot_calibration(ball, reference: ReferenceSession | None) -> dict:
+    """The ball lot the model, the barrel calibration and the BPF use, and what calibrated it
+    (:attr:`~batcert.results.lab.LabResult.lot_calibration`)."""
+    ref, lot = ball.reference, ball.lot
+    if ref is None or lot is None:
+        return {"ball": ball.name, "calibrated": False}
+    from pathlib import Path
+    return {"ball": ball.name, "calibrated": True,
+            "calibrated_on": "session" if reference is not None else "ball file",
+            "reference_bat": Path(ref.bat).stem, "protocol": Path(ref.protocol).stem,
+            "value": ref.value, "uncertainty": ref.uncertainty, "source": ref.source,
+            "shift": lot.shift, "u_shift": lot.u_shift,
+            "reference_session": None if reference is None
+            else display_path(reference.session.spec.path)}
 
 
 def calibrated_bat_text(result: LabResult, session_path: str) -> str:

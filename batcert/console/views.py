@@ -162,6 +162,9 @@ def lab_summary(result, paths: Sequence[Any]) -> None:
     if result.conformance_probability is not None:
         _emit([(f"  conformance probability {result.conformance_probability:.4f}; decision "
                 f"rule: {result.decision_rule} acceptance", "")])
+    if result.lot_calibration.get("calibrated_on") == "session":
+        from batcert.reports.lab_view import lot_fact
+        _emit([(f"  ball lot: {lot_fact(result.lot_calibration)}", "")])
     table(view["budget"], "measurement uncertainty")
     table(view["scan"], "location scan")
     _warnings(result.warnings)

@@ -142,6 +142,7 @@ def _facts(result: LabResult) -> list[tuple[str, str]]:
          f"({result.decision_rule} acceptance)"),
         ("Model (same bat, ball and test)", _model_fact(result)),
         ("Barrel calibrated from the hits", _barrel_fact(result)),
+        ("Ball lot of the model", lot_fact(result.lot_calibration)),
         ("Bat MOI about the pivot", f"{result.moi_pivot:.6f} kg m\u00b2 ({result.moi_source}); "
          f"pivot {result.pivot / INCH:.2f} in from the knob"),
         ("Ball mass", f"{result.ball_mass * 1000:.2f} g"),
@@ -158,6 +159,22 @@ def _model_fact(result: LabResult) -> str:
             f"{result.model['location_from_tip'] / INCH:.2f} in from the tip"
             + ("" if result.model.get("barrel_calibrated") is not False else
                " (the model's barrel is not calibrated by a measurement)"))
+
+
+def lot_fact(lot: dict[str, Any]) -> str:
+    """The ball lot the model, the barrel calibration and the BPF use, and what calibrated it
+    (:attr:`~batcert.results.lab.LabResult.lot_calibration`)."""
+    if not lot:
+        return fmt.DASH
+    if not lot.get("calibrated"):
+        return f"{lot['ball']}, as its ball tests give it (not calibrated on a reference bat)"
+    where = (f"this session's reference bat, session {lot['reference_session']}"
+             if lot["calibrated_on"] == "session" else "the ball file's reference bat")
+    return (f"{lot['ball']}, CALIBRATED (an input) on {where}: {lot['reference_bat']} under "
+            f"{lot['protocol']}, {lot['value']:.4f} \u00b1 {lot['uncertainty']:.4f} (standard "
+            f"uncertainty; {lot['source']}); the lot's COR tests moved {lot['shift']:+.2f} "
+            f"\u00b1 {lot['u_shift']:.2f} standard uncertainties. The measured values do not "
+            "depend on it")
 
 
 def _barrel_fact(result: LabResult) -> str:

@@ -164,6 +164,11 @@ class LabResult(Serialisable):
     model: dict[str, Any] = field(default_factory=dict)
     bat_identification: dict[str, str] = field(default_factory=dict)  # maker, model, serial, lot
     break_in: BreakInResult | None = None  # the measured accelerated break-in before the hits
+    # the ball lot the model, the barrel calibration and the BPF use: its name and, when
+    # calibrated on a reference bat (an input), the bat, the value, its uncertainty, the
+    # source, the lot's shift [standard uncertainties of the COR tests] and its own, and
+    # calibrated_on: 'session' (the session's reference_session) or 'ball file'
+    lot_calibration: dict[str, Any] = field(default_factory=dict)
 
     def return_code(self) -> int:
         """0 when the measured value passes (or the protocol sets no limit), 1 when it fails or

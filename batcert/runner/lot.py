@@ -36,7 +36,7 @@ from batcert.errors import InputError, Problem
 from batcert.model.build import build_bat
 from batcert.numerics import brent_root
 from batcert.runner.runner import run_protocols
-from batcert.specs.ball import BallSpec
+from batcert.specs.ball import BallSpec, ReferenceBat
 from batcert.specs.bat import load_bat
 from batcert.specs.common import sha256_of
 from batcert.specs.protocol import load_protocol
@@ -57,23 +57,26 @@ class LotCalibration:
     tested: Any = field(default=None, compare=False)  # the tested balls' fit (not kept)
 
 
-def calibrated_lot(ball: BallSpec) -> BallSpec:
-    """``ball`` with its lot calibrated on its reference bat (module notes), or ``ball``
-    itself when it has none. An input error at the ball file's ``reference_bat`` value when
-    no lot within :data:`SHIFT_BOUNDS` reaches the measured value."""
-    ref, fit = ball.reference, ball.fit
+def calibrated_lot(ball: BallSpec, reference: ReferenceBat | None = None) -> BallSpec:
+    """``ball`` with its lot calibrated on a reference bat (module notes), or ``ball`` itself
+    when there is none. ``reference``: a measurement that replaces the ball file's own
+    ``reference_bat`` (a lab session's reference bat, :mod:`batcert.lab.lot`). An input error
+    at the reference's line (the ball file's ``reference_bat``, or the file ``reference.path``
+    names) when no lot within :data:`SHIFT_BOUNDS` reaches the measured value."""
+    ref, fit = reference or ball.reference, ball.fit
     if ref is None or fit is None:
         return ball
     cal = workspace.current().call(
         "ball-lot", _calibrate, ball.path, ball.sha256, ref.bat, sha256_of(ref.bat),
-        ref.protocol, sha256_of(ref.protocol),
+        ref.protocol, sha256_of(ref.protocol), ref.value, ref.uncertainty,
         save=lambda c: {"lot": np.array([c.shift, c.u_shift, c.model_value, c.slope])},
         load=lambda a: LotCalibration(*(float(x) for x in a["lot"])))
     if not np.isfinite(cal.shift):
-        raise InputError([Problem(ball.path, ref.line, "reference_bat", _unreachable(cal, ref))])
+        raise InputError([Problem(ref.path or ball.path, ref.line, ref.field,
+                                  _unreachable(cal, ref))])
     law = fit.moved(cal.shift)
     return replace(ball, model=replace(ball.model, law=law), fit=replace(fit, law=law),
-                   lot=replace(cal, tested=fit))
+                   reference=ref, lot=replace(cal, tested=fit))
 
 
 def _unreachable(cal: LotCalibration, ref) -> str:
@@ -84,15 +87,16 @@ def _unreachable(cal: LotCalibration, ref) -> str:
 
 
 def _calibrate(ball_path: str, ball_sha: str, bat: str, bat_sha: str, protocol: str,
-               protocol_sha: str) -> LotCalibration:
-    """The shift (module notes) of the ball file at ``ball_path`` on its reference bat (the
-    files' checksums key the kept result); NaN with the nearest value reached when none meets
-    it."""
+               protocol_sha: str, value: float, uncertainty: float) -> LotCalibration:
+    """The shift (module notes) of the ball file at ``ball_path`` that makes the model's metric
+    for the reference bat ``bat`` under ``protocol`` equal ``value`` (standard uncertainty
+    ``uncertainty``; the files' checksums key the kept result); NaN with the nearest value
+    reached when none meets it."""
     from batcert.specs.ball import load_ball
 
     ball = load_ball(Path(ball_path))
-    ref, fit = ball.reference, ball.fit
-    assert ref is not None and fit is not None
+    fit = ball.fit
+    assert fit is not None
     built = build_bat(load_bat(Path(bat)))
     spec = load_protocol(Path(protocol))
     engine = get_engine("flexible")
@@ -109,16 +113,16 @@ def _calibrate(ball_path: str, ball_sha: str, bat: str, bat_sha: str, protocol: 
         balls = [replace(ball, model=replace(ball.model, law=law), reference=None)
                  for law in laws if law is not None]
         got = iter(r.value for r in run_protocols([(built, spec, b) for b in balls], engine))
-        return np.array([next(got) - ref.value if law is not None else np.nan for law in laws])
+        return np.array([next(got) - value if law is not None else np.nan for law in laws])
 
     def found(k: float, slope: float, gap: float) -> LotCalibration:
-        return LotCalibration(float(k), float(ref.uncertainty / abs(slope)), float(ref.value + gap),
+        return LotCalibration(float(k), float(uncertainty / abs(slope)), float(value + gap),
                               float(slope))
 
     k = _secant(gaps)
     if k is not None:
         return found(*k)
-    return _bracketed(gaps, found, ref.value)
+    return _bracketed(gaps, found, value)
 
 
 def _secant(gaps) -> tuple[float, float, float] | None:

@@ -275,6 +275,8 @@ class ReferenceBat:
     uncertainty: float
     source: str
     line: int | None  # the value's line
+    path: str | None = None  # the file of that line, when not the ball file (a lab session)
+    field: str = "reference_bat"  # the field at that line
 
 
 @dataclass(frozen=True)

@@ -134,6 +134,11 @@ SESSION_SCHEMA = Schema("hit session", (
           "checked against the protocol's `break_in` rules and shown on the certificate."),
     Field("lab", section(LAB_SCHEMA), "The laboratory, operator, customer, bat serial, dates and "
           "signatures printed on the certificate."),
+    Field("reference_session", text(), "A reference bat's session with the same balls (its "
+          "session file, relative to this one): its hits, reduced under the same protocol, "
+          "calibrate the ball lot that this session's model prediction, barrel calibration and "
+          "BPF use, in place of the ball file's `reference_bat` (a CALIBRATION, an input; "
+          "docs/lab-reduction.md)."),
 ))
 
 
@@ -159,6 +164,7 @@ class SessionSpec:
     uncertainty: dict | None  # speed [m/s], impact_location [m], moi [kg m^2], ball_mass [kg]
     lab: dict | None  # laboratory, accreditation, operator, ... (text), signatures (list)
     break_in: dict | None = None  # compression [N, list], new_compression [N], source
+    reference_session: str | None = None  # a reference bat's session file, relative to this
 
     @property
     def path(self) -> str:

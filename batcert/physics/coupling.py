@@ -17,7 +17,7 @@ compression predicted for that stage's time. Units: SI.
 from __future__ import annotations
 
 from collections.abc import Hashable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -36,6 +36,21 @@ class Coupling:
     starts: tuple[int, ...]
     table: np.ndarray  # (n, G, points)
     spacing: np.ndarray  # (n,) [m]
+    # the table laid out for :meth:`at`: each impact's points one after another, each point's
+    # G factors contiguous, and the differences to the next point, (n * points, G) each;
+    # derived from ``table`` (a gather of whole rows, where ``table[rows, :, k]`` gathers
+    # single numbers G apart: 1.3 ms a call for 2,000 impacts, a fourth of a hollow step)
+    _level: np.ndarray | None = field(default=None, repr=False, compare=False)
+    _rise: np.ndarray | None = field(default=None, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        if self._level is None or self._rise is None:
+            n, groups, points = self.table.shape
+            by_point = np.ascontiguousarray(self.table.transpose(0, 2, 1))  # (n, points, G)
+            rise = np.zeros_like(by_point)
+            rise[:, :-1] = by_point[:, 1:] - by_point[:, :-1]
+            self._level = by_point.reshape(n * points, groups)
+            self._rise = rise.reshape(n * points, groups)
 
     @property
     def size(self) -> int:
@@ -54,9 +69,11 @@ class Coupling:
         """``rho`` of every group at each impact's compression ``u`` [m], (n, G): linear
         between the table's points."""
         k, t = self._locate(u)
-        rows = np.arange(self.table.shape[0])
-        lo, hi = self.table[rows, :, k], self.table[rows, :, k + 1]
-        return lo + t[:, None] * (hi - lo)
+        assert self._level is not None and self._rise is not None
+        at = k + self.table.shape[2] * np.arange(k.size)
+        out = self._level.take(at, axis=0)
+        out += t[:, None] * self._rise.take(at, axis=0)
+        return out
 
     def slope(self, u) -> np.ndarray:
         """``d rho / d u`` of every group at ``u`` [1/m], (n, G)."""

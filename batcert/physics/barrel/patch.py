@@ -113,10 +113,16 @@ class BarrelPatch:
         order's factor (orders, p, g), the residual compliance (p, g) and the static
         compliance (p, g) [m/N]."""
         c = circumferential_factors(self.orders, half_angle)
-        static = np.einsum("npg,np->pg", c**2, self.flexibility)
+        c2 = c**2
+        static = np.einsum("npg,np->pg", c2, self.flexibility)
+        # the kept modes' sum (gain / omega)^2, order by order: a mode's factor is its order's,
+        # so each order's modes are summed first (a few orders, against some 40 modes)
         order_row = {n: i for i, n in enumerate(self.orders)}
-        mode_c = c[[order_row[n] for n in self.mode_orders]]  # (m, p, g)
-        modal = np.einsum("mpg,pm->pg", mode_c**2, (self.axial / self.omega) ** 2)
+        kept = sorted(set(int(n) for n in self.mode_orders))
+        energy = (self.axial / self.omega) ** 2  # (p, m)
+        by_order = np.stack([energy[:, self.mode_orders == n].sum(axis=1) for n in kept],
+                            axis=1)  # (p, kept orders)
+        modal = np.einsum("npg,pn->pg", c2[[order_row[n] for n in kept]], by_order)
         return c, np.clip(static - modal, 0.0, None), static
 
     def at(self, half_angle) -> BarrelResponse:

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 from batcert.reports import svg
 from batcert.reports.figure import Figure, LineFigure, svg_of
 from batcert.reports.format import metric_name
-from batcert.reports.table import Badge
+from batcert.reports.table import Badge, Table
 from batcert.reports.templates import render_template
 from batcert.units import INCH, Display, to_us
 
@@ -35,6 +35,21 @@ def cell(value: object) -> Markup:
         us = f'<span class="us">{escape(value.us)}</span>' if value.us else ""
         return Markup(f'<span class="si">{escape(value.si)}</span>{us}')
     return escape(str(value))
+
+
+def table_html(t: Table) -> Markup:
+    """A report table as HTML (``table.html.j2`` includes it): its header, then a row per line
+    of cells (:func:`cell`), numeric columns classed ``num``. Written here rather than as a
+    template loop: an 800-variant sweep's seven tables of 400 rows took 0.6 s in Jinja."""
+    from markupsafe import Markup, escape
+
+    num = [' class="num"' if t.is_numeric(i) else "" for i in range(len(t.headers))]
+    head = "".join(f'<th scope="col"{num[i]}>{escape(h)}</th>' for i, h in enumerate(t.headers))
+    # a row's cells past the headers are plain (the template's columns likewise)
+    rows = "".join("<tr>" + "".join(f"<td{num[i] if i < len(num) else ''}>{cell(c)}</td>"
+                                    for i, c in enumerate(row)) + "</tr>\n" for row in t.rows)
+    return Markup(f'<div class="scroll">\n<table class="sweep">\n<thead><tr>{head}</tr></thead>\n'
+                  f"<tbody>\n{rows}</tbody>\n</table>\n</div>\n")
 
 
 def _cop_lines(result: RunResult) -> list[svg.VLine]:
@@ -90,7 +105,7 @@ def css_string(text: object):
                           for c in str(text)))
 
 
-FILTERS = {"cell": cell, "css_string": css_string}
+FILTERS = {"cell": cell, "css_string": css_string, "table_html": table_html}
 
 
 def run_html(result: RunResult) -> str:
@@ -124,10 +139,12 @@ def league_html(result: LeagueResult) -> str:
     return render_template("league.html.j2", league_view(result), FILTERS)
 
 
-def sweep_html(result: SweepResult) -> str:
-    """A sweep or design study as one styled HTML5 page with its figures."""
-    from batcert.reports.sweep_view import sweep_view
-    return render_template("sweep.html.j2", sweep_view(result), FILTERS)
+def sweep_html(result: SweepResult, view: dict | None = None) -> str:
+    """A sweep or design study as one styled HTML5 page with its figures; ``view``: its
+    :func:`~batcert.reports.sweep_view.sweep_view` without charts, when already made."""
+    from batcert.reports.sweep_view import sweep_view, with_charts
+    view = sweep_view(result) if view is None else with_charts(view)
+    return render_template("sweep.html.j2", view, FILTERS)
 
 
 def lab_html(result: LabResult) -> str:

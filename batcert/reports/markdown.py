@@ -74,9 +74,11 @@ def league_markdown(result: LeagueResult) -> str:
     return render_template("league.md.j2", league_view(result), FILTERS)
 
 
-def sweep_markdown(result: SweepResult) -> str:
+def sweep_markdown(result: SweepResult, view: dict | None = None) -> str:
+    """A sweep or design study; ``view``: its ``sweep_view`` without charts, when made."""
     from batcert.reports.sweep_view import sweep_view
-    return render_template("sweep.md.j2", sweep_view(result, charts=False), FILTERS)
+    return render_template("sweep.md.j2", sweep_view(result, charts=False) if view is None
+                           else view, FILTERS)
 
 
 def lab_markdown(result: LabResult) -> str:

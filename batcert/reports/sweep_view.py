@@ -349,10 +349,25 @@ def headline(result: SweepResult) -> str:
 
 
 def sweep_view(result: SweepResult, charts: bool = True) -> dict[str, Any]:
-    """Everything the sweep report shows, formatted; the templates only arrange it."""
+    """Everything the sweep report shows, formatted; the templates only arrange it. Without
+    ``charts`` the figures have no SVG (:func:`with_charts` draws it)."""
+    view = _plain_view(result)
+    return with_charts(view) if charts else view
+
+
+def with_charts(view: dict[str, Any]) -> dict[str, Any]:
+    """``view`` (:func:`sweep_view` without charts) with its figures drawn: the Markdown and
+    HTML reports of one write share the rest (:data:`batcert.reports.write` renders a set
+    from one view: the 400-row tables of an 800-variant sweep are formatted once)."""
     from markupsafe import Markup
 
     from batcert.reports.figure import svg_of
+    return {**view, "figures": [{**f, "svg": Markup(svg_of(fig))}
+                                for f, fig in zip(view["figures"], view["figure_objects"],
+                                                  strict=True)]}
+
+
+def _plain_view(result: SweepResult) -> dict[str, Any]:
     figs = sweep_figures(result)
     nominal = None
     if result.nominal is not None:
@@ -387,8 +402,8 @@ def sweep_view(result: SweepResult, charts: bool = True) -> dict[str, Any]:
         "conditions": [(c.name, _condition_table(result, k))
                        for k, c in enumerate(result.conditions)],
         "shown_rows": len(_rows(result)), "variants": len(result.points),
-        "figures": [{"svg": Markup(svg_of(f)) if charts else "", "caption": f.caption,
-                     "title": f.title} for f in figs],
+        "figures": [{"svg": "", "caption": f.caption, "title": f.title} for f in figs],
+        "figure_objects": figs,
         "errors": [(i, e) for i, e in enumerate(result.errors) if e][:50],
         "inputs": result.inputs, "date": fmt.created(result.created),
     }

@@ -33,14 +33,19 @@ class ReportKind:
     """How one kind of result is reported: its file stem and a renderer per format."""
 
     stem: Callable[[Any], str]
-    markdown: Callable[[Any], str]
-    html: Callable[[Any], str]
+    markdown: Callable[..., str]
+    html: Callable[..., str]
+    # what the Markdown and HTML renderers share, made once for a set (None: nothing); the
+    # renderers then take it as their second argument
+    view: Callable[[Any], Any] | None = None
 
-    def render(self, result: Any, fmt: str) -> str:
+    def render(self, result: Any, fmt: str, view: Any = None) -> str:
+        """``result`` as ``fmt`` (md, html or json); ``view``: :attr:`view` of it, if made."""
+        extra = () if view is None else (view,)
         if fmt == "md":
-            return self.markdown(result)
+            return self.markdown(result, *extra)
         if fmt == "html":
-            return self.html(result)
+            return self.html(result, *extra)
         if fmt == "json":
             return result.to_json() + "\n"
         raise ValueError(f"unknown report format {fmt!r} (choose from {', '.join(SUFFIXES)})")
@@ -111,6 +116,11 @@ def _markdown():
     return markdown
 
 
+def _sweep_view(result: Any) -> Any:
+    from batcert.reports.sweep_view import sweep_view
+    return sweep_view(result, charts=False)
+
+
 def _html():
     from batcert.reports import html
     return html
@@ -126,8 +136,8 @@ _KINDS: dict[str, ReportKind] = {
                                    lambda r: _html().comparison_html(r)),
     "LeagueResult": ReportKind(league_stem, lambda r: _markdown().league_markdown(r),
                                lambda r: _html().league_html(r)),
-    "SweepResult": ReportKind(sweep_stem, lambda r: _markdown().sweep_markdown(r),
-                              lambda r: _html().sweep_html(r)),
+    "SweepResult": ReportKind(sweep_stem, lambda r, v=None: _markdown().sweep_markdown(r, v),
+                              lambda r, v=None: _html().sweep_html(r, v), _sweep_view),
     "FieldResult": ReportKind(field_stem, lambda r: _markdown().field_markdown(r),
                               lambda r: _html().field_html(r)),
     "LabResult": ReportKind(lab_stem, lambda r: _markdown().lab_markdown(r),
@@ -173,7 +183,10 @@ def write_reports(result: Any, out_dir: Path, formats: Sequence[str] = ("md", "h
     if not stem or stem in (".", "..") or "/" in stem or "\\" in stem or "\0" in stem:
         raise ValueError(f"report stem {stem!r} must be a plain file name")
     out_dir = Path(out_dir)
-    return write_texts({out_dir / f"{stem}{SUFFIXES[f]}": kind.render(result, f) for f in wanted})
+    shared = kind.view(result) if kind.view is not None and {"md", "html"} & set(wanted) \
+        else None
+    return write_texts({out_dir / f"{stem}{SUFFIXES[f]}": kind.render(result, f, shared)
+                        for f in wanted})
 
 
 def _reason(exc: OSError) -> str:

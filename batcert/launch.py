@@ -10,6 +10,13 @@ from then on it is a KeyboardInterrupt, which the commands clean up after
 
 This module imports nothing of batcert at load time, so that ``import batcert.launch`` is as
 light as ``import batcert``.
+
+The command also runs its linear algebra on one thread (:data:`ONE_THREAD`) unless the user set
+the thread count: the engine's matrix products are small (pieces of about 1,300 impacts by at
+most 112 columns), sweeps run in parallel over processes, and on a machine that is busy (or
+with two workers on two cores) the multithreaded BLAS's threads wait for each other: a hollow
+batch of 2,000 impacts took 3.5-4.3 times as long with the default threads as with one, on
+this project's 2-core machine under load (docs/performance.md).
 """
 
 from __future__ import annotations
@@ -18,6 +25,9 @@ import os
 import signal
 
 INTERRUPTED = 130
+# BLAS thread counts the command sets to one where the environment does not give them (read by
+# OpenBLAS, MKL and OpenMP when numpy loads: before any import of numpy)
+ONE_THREAD = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 MESSAGE = b"error: interrupted\n"  # as batcert.console.error("interrupted") writes it
 
 
@@ -35,6 +45,8 @@ def _load_cli():
 def entry() -> None:
     """The installed ``batcert`` command, ``python -m batcert`` and ``python -m batcert.cli``."""
     previous = signal.signal(signal.SIGINT, _interrupted_while_loading)
+    for name in ONE_THREAD:
+        os.environ.setdefault(name, "1")
     run = _load_cli()
     signal.signal(signal.SIGINT, signal.default_int_handler if previous is None else previous)
     run()

@@ -136,3 +136,21 @@ def test_the_installed_command_starts_with_the_interrupt_guard():
     from pathlib import Path
     project = tomllib.loads((Path(__file__).parents[2] / "pyproject.toml").read_text())
     assert project["project"]["scripts"]["batcert"] == "batcert.launch:entry"
+
+
+@pytest.mark.parametrize("given, expected", [(None, "1"), ("2", "2")])
+def test_the_command_runs_blas_on_one_thread_unless_told(tmp_path, given, expected):
+    # the engine's small matrix products with the multithreaded BLAS's default threads took
+    # 3.5-4.3x as long on a busy 2-core machine (docs/performance.md); a user's own setting wins
+    script = tmp_path / "threads.py"
+    script.write_text("import os, sys\nfrom batcert import launch\n"
+                      "launch._load_cli = lambda: lambda: print(os.environ['OPENBLAS_NUM_THREADS'],"
+                      " os.environ['OMP_NUM_THREADS'], os.environ['MKL_NUM_THREADS'], "
+                      "'numpy' in sys.modules)\nlaunch.entry()\n")
+    env = {k: v for k, v in os.environ.items() if not k.endswith("_NUM_THREADS")}
+    if given is not None:
+        env.update(OPENBLAS_NUM_THREADS=given, OMP_NUM_THREADS=given, MKL_NUM_THREADS=given)
+    proc = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                          timeout=60, cwd=tmp_path, env=env)
+    # numpy not loaded before the entry sets them: BLAS reads them when numpy loads
+    assert proc.stdout.split() == [expected] * 3 + ["False"], proc.stderr

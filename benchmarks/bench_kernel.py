@@ -6,7 +6,7 @@ each ball law. Prints figures; asserts nothing.
 A random batch of ``aluminium-34`` impacts (the slowest shipped bat: 44 modes, a 12.5 us step)
 goes through the engine twice, with the shipped collegiate ball (viscoelastic) and with
 Nathan's 2000 ball (rate-free hysteresis, batcert 0.2's law). For each: the engine's impacts
-per second, the stepping's share (the time inside :func:`batcert.physics.march.march`), and the
+per second, the stepping's share (the time inside :func:`batcert.engines.kernel.march.march`), and the
 stepping's cost per impact and step; then the stepping alone again on the same inputs, so the
 figure does not include the engine's set-up. Figures are also printed as ratios to the time of
 ``python -c "import numpy"`` measured in the same run (the machine's yardstick).
@@ -33,7 +33,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 import batcert.engines.flexible as flexible_module  # noqa: E402
-import batcert.physics.march as march_module  # noqa: E402
+import batcert.engines.kernel.march as march_module  # noqa: E402
 from batcert.commands.inputs import load_bat_any, load_protocol_any  # noqa: E402
 from batcert.engines import ImpactBatch  # noqa: E402
 from batcert.engines.flexible import FlexibleEngine  # noqa: E402

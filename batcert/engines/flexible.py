@@ -65,12 +65,12 @@ from batcert.engines.flexible_system import (
     surface,
 )
 from batcert.engines.flexible_system import linear_system as build_system
+from batcert.engines.kernel.linear_system import LinearSystem, stack_systems
+from batcert.engines.kernel.march import Separation, march
 from batcert.physics import rigid
 from batcert.physics.ball import BallModel
 from batcert.physics.balls.impact1d import wall_mean_compression
 from batcert.physics.batmodel import BatModel
-from batcert.physics.linear_system import LinearSystem, stack_systems
-from batcert.physics.march import Separation, march
 from batcert.physics.modes import Modes
 
 __all__ = ["BALL_LOSS", "CONTACT_SURFACES", "DEFAULT_MODES", "DEFAULT_SHELL_FREQUENCY",
@@ -269,7 +269,7 @@ class FlexibleEngine:
         """Solve several jobs (:class:`~batcert.engines.base.Job`: batches of one bat or of
         several, and balls, pivots, supports, given modes), in as few integrations as possible:
         the batches that share a time step are stacked into one
-        (:func:`~batcert.physics.linear_system.stack_systems`). The outcomes come back in the
+        (:func:`~batcert.engines.kernel.linear_system.stack_systems`). The outcomes come back in the
         same order, each exactly what :meth:`solve` gives for it alone.
 
         Large batches go through in passes of at most ``_PASS_ROWS`` impacts (a larger batch

@@ -36,8 +36,8 @@ from batcert.engines.flexible_system import (
     patch_of,
     shell_table,
 )
+from batcert.engines.kernel.linear_system import LinearSystem
 from batcert.physics import rigid
-from batcert.physics.linear_system import LinearSystem
 
 Built = tuple[LinearSystem, Extras]
 

@@ -11,9 +11,9 @@ import numpy as np
 
 from batcert.engines.base import ImpactOutcome, Job
 from batcert.engines.flexible_system import Extras, rigid_mode_velocities
+from batcert.engines.kernel.linear_system import LinearSystem
+from batcert.engines.kernel.march import Separation
 from batcert.physics import rigid
-from batcert.physics.linear_system import LinearSystem
-from batcert.physics.march import Separation
 
 
 @dataclass(frozen=True)

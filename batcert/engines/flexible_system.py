@@ -2,7 +2,7 @@
 module notes give the model): where the ball presses on the bat (:class:`Patch`), the beam's
 and the hollow barrel's modes read there, the truncated modes' residual compliance, and for a
 hollow bat the coupling of the shell modes that follows the footprint's arc around the barrel.
-:func:`linear_system` assembles them into a :class:`~batcert.physics.linear_system.LinearSystem`
+:func:`linear_system` assembles them into a :class:`~batcert.engines.kernel.linear_system.LinearSystem`
 and the :class:`Extras` the outcome needs.
 """
 
@@ -14,13 +14,13 @@ import numpy as np
 
 from batcert import workspace
 from batcert.engines.base import ImpactBatch
+from batcert.engines.kernel.coupling import Coupling
+from batcert.engines.kernel.linear_system import LinearSystem
 from batcert.physics import rigid
 from batcert.physics.ball import BallModel
 from batcert.physics.balls import footprint
 from batcert.physics.balls.impact1d import wall_mean_compression
 from batcert.physics.batmodel import BatModel
-from batcert.physics.coupling import Coupling
-from batcert.physics.linear_system import LinearSystem
 from batcert.physics.modes import Modes, beam_of
 
 SUPPORTS = ("pinned", "free")
@@ -274,7 +274,7 @@ def shell_table(bpatch, patch: Patch):
 def _coupling(bpatch, table: dict, columns: int, n_bending: int, beam_residual, patch: Patch
               ) -> Coupling:
     """The groups of a hollow bat's columns whose gains follow the footprint
-    (:mod:`batcert.physics.coupling`): the beam's modes (fixed), the shell's modes order by
+    (:mod:`batcert.engines.kernel.coupling`): the beam's modes (fixed), the shell's modes order by
     order (factor ``c_n(beta(u))`` of the arc around the barrel; their gains are the axial
     averages, ``c_n = 1``), and the residual pseudo-mode (the square root of the total
     residual compliance at ``u`` over that at ``u_rep``, where its gain is taken)."""

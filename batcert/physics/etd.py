@@ -1,5 +1,5 @@
 """The phi functions of exponential time differencing, shared by the modal stepping
-(:mod:`batcert.physics.march`, complex modal exponents) and the viscoelastic ball's branch
+(:mod:`batcert.engines.kernel.march`, complex modal exponents) and the viscoelastic ball's branch
 (:mod:`batcert.physics.balls.viscoelastic`, a real relaxation rate)."""
 
 from __future__ import annotations

@@ -11,7 +11,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-import batcert.physics.march as march_module
+import batcert.engines.kernel.march as march_module
 from batcert.commands.inputs import load_bat_any, load_protocol_any
 from batcert.engines import ImpactBatch, get_engine
 from batcert.physics.ball import BallModel

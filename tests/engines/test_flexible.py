@@ -76,7 +76,7 @@ def reference_impact(bat, ball, pivot, support, z, pitch_speed, bat_angular_spee
     (beam and shell residual compliance in series), the ball, the compression, and a
     viscoelastic ball's branch variable. Every mode is driven by ``-g_j(u) F`` and the
     compression changes as ``u' = sum g_j(u) q_j' - x'`` (the footprint's growth does no work;
-    physics/march.py); damping ``zeta = loss_factor / 2`` on every flexible mode.
+    engines/kernel/march.py); damping ``zeta = loss_factor / 2`` on every flexible mode.
 
     The footprint is the engine's (``FlexibleEngine._patch``, a model definition): the force
     spread along the bat at its fixed size, and around a hollow barrel over the arc of the
@@ -400,7 +400,7 @@ def test_solve_many_equals_separate_solves(r161, monkeypatch):
     # every diagnostic alike. Also with the march cut into chunks smaller than the batch, and
     # with the jobs solved in passes of 2 impacts (the job of 3 cut across passes, joined again).
     import batcert.engines.flexible as flexible_module
-    import batcert.physics.march as march_module
+    import batcert.engines.kernel.march as march_module
 
     # Jobs of one bat, ball, pivot and support (the first and the last two) also share one
     # linear system, split back per job; the states recorded per impact come back with them.
@@ -636,7 +636,7 @@ def test_input_errors(r161):
 def test_viscoelastic_ball_agrees_with_reference_integration(r161, case):
     # The viscoelastic law's branch variable integrated with the step's exponential stages
     # (physics/balls/viscoelastic.py) and, on a hollow bat, the shell's coupling following the
-    # footprint from a table (physics/coupling.py), against solve_ivp of the same equations with
+    # footprint from a table (engines/kernel/coupling.py), against solve_ivp of the same equations with
     # the coupling evaluated afresh (rtol 1e-9): stationary bat at 60 m/s, pinned, impacts from
     # the taper to the tip. Within 0.1 % of the approach speed (brief; the exit speed itself
     # passes near zero at 0.45 m); measured: solid 4.1e-5, hollow 2.0 mm wall 1.9e-5 (the

@@ -129,7 +129,7 @@ def body_impact(state, mass: float, speed, recoil=0.0, time_scale=None,
             frac = g_prev[sep] / (g_prev[sep] - g[sep])
             out_t[sep] = (step - 1 + frac) * h[sep]
             out_imp[sep], out_fu[sep] = imp[sep], fu[sep]
-            if crossing:  # the last step's impulse up to separation only (physics/march.py)
+            if crossing:  # the last step's impulse up to separation only (engines/kernel/march.py)
                 out_imp[sep] += 0.5 * f0[sep] * frac * h[sep] - dj[sep]
             out_top[sep], out_peak[sep] = u_top[sep], f_peak[sep]
             out_sep[sep] = u[sep] + frac * (u_new[sep] - u[sep])

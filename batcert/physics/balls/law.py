@@ -2,7 +2,7 @@
 engines, the fit, the runner and ``inspect`` use, so that none of them names a law.
 
 A new law is a frozen dataclass of its parameters with these methods, its time-stepping state
-(``march_rows``, :func:`batcert.physics.march.march` documents what a state provides), and an
+(``march_rows``, :func:`batcert.engines.kernel.march.march` documents what a state provides), and an
 entry in :data:`~batcert.physics.balls.LAWS`; the ball file's fields for it are
 :mod:`batcert.specs.ball`'s.
 """

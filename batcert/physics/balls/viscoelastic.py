@@ -34,7 +34,7 @@ Parameters: ``stiffness`` ``k0`` [N/m^a], ``exponent`` ``a`` [-], ``relaxed_frac
 
 Time stepping (:class:`ViscoelasticMarch`): the internal variable obeys a linear equation with
 the compression as its forcing, ``ds/dt = -s / tau + x(u) / tau``; the batched integrators
-(:func:`batcert.physics.march.march`, :func:`batcert.physics.balls.impact1d.body_impact`) give
+(:func:`batcert.engines.kernel.march.march`, :func:`batcert.physics.balls.impact1d.body_impact`) give
 it the stages of the exponential Runge-Kutta scheme ETDRK4 (Cox & Matthews, J. Comput. Phys.
 176 (2002) 430, Eqs. 26-29) at the compressions of their own stages, so its relaxation is exact
 and the step only has to resolve the pulse.
@@ -211,7 +211,7 @@ class ViscoelasticMarch:
     separation it is the energy the ball took and did not return.
     """
 
-    crossing = True  # the force falls through zero with a finite slope (physics/march.py)
+    crossing = True  # the force falls through zero with a finite slope (engines/kernel/march.py)
 
     def __init__(self, k0, k1, a, tau, h=None):
         # k0, a: (n,); k1, tau, s: (n, branches)

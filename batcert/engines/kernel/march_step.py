@@ -1,4 +1,4 @@
-"""One ETDRK4 step of every impact in contact (:func:`batcert.physics.march.march`): the
+"""One ETDRK4 step of every impact in contact (:func:`batcert.engines.kernel.march.march`): the
 state that evolves per impact, the stage forces from the ball's law, the modal update, and the
 refinement of the largest compression inside a step.
 """
@@ -9,8 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from batcert.physics.coupling import extrapolate
-from batcert.physics.etdrk4 import Coefficients
+from batcert.engines.kernel.coupling import extrapolate
+from batcert.engines.kernel.etdrk4 import Coefficients
 
 
 @dataclass
@@ -118,11 +118,11 @@ def _peak(st: State, c: Coefficients, law, turned: np.ndarray, du: np.ndarray, h
 def step_coupled(st: State, c: Coefficients, law, h: float, shell: slice | None
                   ) -> np.ndarray:
     """:func:`step` for gains that follow the ball's compression (a
-    :class:`~batcert.physics.coupling.Coupling` of ``G`` groups).
+    :class:`~batcert.engines.kernel.coupling.Coupling` of ``G`` groups).
 
     Every group is read and forced with its factor ``rho`` at each stage's time, ``rho`` of the
     compression predicted for it from the last two steps
-    (:func:`~batcert.physics.coupling.extrapolate`); a stage's response to a force is each
+    (:func:`~batcert.engines.kernel.coupling.extrapolate`); a stage's response to a force is each
     group's part of ``ka``, ``c0``, ``cb`` scaled by the factors of the force's and the
     reading's times: the same scheme, the couplings frozen at ``rho`` through a step's stages.
 

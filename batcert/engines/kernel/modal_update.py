@@ -1,7 +1,7 @@
-"""How a step of :func:`~batcert.physics.march.march` advances the modal state and reads
+"""How a step of :func:`~batcert.engines.kernel.march.march` advances the modal state and reads
 the contact point's free motion from it.
 
-The state is ``Y = c_y Z`` (n, K) complex, one row per impact (:mod:`batcert.physics.march`).
+The state is ``Y = c_y Z`` (n, K) complex, one row per impact (:mod:`batcert.engines.kernel.march`).
 Each step advances it by the free modes' exact propagation and the forcing of the step's
 contact forces (F0, Fa + Fb, Fc), and reads four numbers per row: the free ``y`` after h/2 and
 h, ``y'`` and ``y``.
@@ -37,7 +37,7 @@ FRAME_GROWTH = 50.0
 
 class ModalUpdate(Protocol):
     """The one interface of the batched kernel's modal update: how a step of
-    :func:`~batcert.physics.march.march` advances ``Y`` (n, K) under the step's forces and
+    :func:`~batcert.engines.kernel.march.march` advances ``Y`` (n, K) under the step's forces and
     reads the contact point's free motion from it. :class:`RowByRow` is the plain reference
     (every row its own propagation, forcing and read-out; ``SHARED_ROWS`` set above the batch
     size makes :func:`layout` choose it); :class:`SharedRuns` the fast one, which
@@ -59,7 +59,7 @@ class ModalUpdate(Protocol):
 @dataclass(frozen=True)
 class Block:
     """The step constants of the rows ``start .. stop`` of one bat
-    (:func:`batcert.physics.etdrk4.coefficients`): ``shared`` when every row has the block's
+    (:func:`batcert.engines.kernel.etdrk4.coefficients`): ``shared`` when every row has the block's
     modes, then ``e1`` (1, K), ``read`` (1, 4, 2K) and ``push`` (1, 3, K) are the block's; else
     one row each."""
 
@@ -136,7 +136,7 @@ class RowByRow:
     (n, 3, 2K) of ``Y`` (``R`` and ``B`` on ``Y`` as floats): the free ``y`` after h/2 and h,
     ``y'`` and ``y`` now; the change of ``Y`` per (F0, Fa + Fb, Fc).
 
-    With groups of columns whose coupling follows the ball (:mod:`batcert.physics.coupling`;
+    With groups of columns whose coupling follows the ball (:mod:`batcert.engines.kernel.coupling`;
     ``starts``, their first float columns): the forces come per group, ``f[:, s G + g]``, and
     the read-out goes out per group, ``out[:, r G + g]``."""
 

@@ -9,7 +9,7 @@ arc around the barrel, the residual pseudo-mode by the square root of the quasi-
 compliance under the footprint; the beam's bending modes, which feel only the force's
 resultant along the bat, form one group with ``rho = 1``. A :class:`Coupling` holds each
 group's columns (contiguous) and, per impact, ``rho`` tabulated on a grid of compressions;
-the time stepping (:mod:`batcert.physics.march`) reads each group's share of the contact
+the time stepping (:mod:`batcert.engines.kernel.march`) reads each group's share of the contact
 point's motion and forces each group by ``rho F``, at each stage of a step with ``rho`` of the
 compression predicted for that stage's time. Units: SI.
 """

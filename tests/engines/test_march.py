@@ -1,4 +1,4 @@
-"""batcert.physics.march: the two ways a step reads and forces the modes give the same impacts.
+"""batcert.engines.kernel.march: the two ways a step reads and forces the modes give the same impacts.
 
 Rows that share their modes (one bat) are read and forced with one matrix product per run of
 them; rows that do not, row by row (``modal_update.SHARED_ROWS`` decides). The integration is the same
@@ -14,8 +14,8 @@ import pytest
 from batcert.commands.inputs import load_bat_any, load_protocol_any
 from batcert.engines import ImpactBatch
 from batcert.engines.flexible import FlexibleEngine
-from batcert.physics import march, modal_update
-from batcert.physics.linear_system import stack_systems
+from batcert.engines.kernel import march, modal_update
+from batcert.engines.kernel.linear_system import stack_systems
 from batcert.specs.ball import load_ball
 
 PIVOT = 0.1524  # [m from knob]

@@ -1,4 +1,4 @@
-"""batcert.physics.modal_update: how runs of rows that share their modes are cut into pieces,
+"""batcert.engines.kernel.modal_update: how runs of rows that share their modes are cut into pieces,
 follow the rows that are kept, and keep their state in turning frames. (That the whole march
 gives the same impacts either way is tested in test_march.py.)"""
 
@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from batcert.physics import modal_update
+from batcert.engines.kernel import modal_update
 
 
 def test_the_runs_of_shared_modes_follow_the_rows_that_are_kept():

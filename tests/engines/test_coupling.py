@@ -1,5 +1,5 @@
 """Unit tests of the modes' coupling to the ball over its compression
-(batcert.physics.coupling): the tabulated group factors, the stacking of several systems'
+(batcert.engines.kernel.coupling): the tabulated group factors, the stacking of several systems'
 groups, and the compression's extrapolation over a step."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from batcert.physics.coupling import Coupling, extrapolate, stack
+from batcert.engines.kernel.coupling import Coupling, extrapolate, stack
 
 LABELS = ("beam", ("shell", 2), "residual")
 

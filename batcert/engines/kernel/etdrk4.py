@@ -1,8 +1,8 @@
 """The constants of one ETDRK4 step of every impact (Cox & Matthews, J. Comput. Phys. 176 (2002)
-430, Eqs. 26-29), for :func:`batcert.physics.march.march`: the stage responses ``ka``, ``b0``,
+430, Eqs. 26-29), for :func:`batcert.engines.kernel.march.march`: the stage responses ``ka``, ``b0``,
 ``c0``, ``cb``, ``ca``, the rigid/ball update ``w6``, ``v6``, and each block's propagator,
 read-out and forcing of the modes. How those are laid out in memory for the step (row by row,
-or one matrix per run of rows that share their modes) is :func:`batcert.physics.modal_update.layout`'s
+or one matrix per run of rows that share their modes) is :func:`batcert.engines.kernel.modal_update.layout`'s
 business, not this module's.
 """
 
@@ -13,10 +13,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from batcert import workspace
-from batcert.physics.coupling import Coupling
+from batcert.engines.kernel.coupling import Coupling
+from batcert.engines.kernel.linear_system import LinearSystem
+from batcert.engines.kernel.modal_update import Block, ModalUpdate, im_weights, layout
 from batcert.physics.etd import phi_functions
-from batcert.physics.linear_system import LinearSystem
-from batcert.physics.modal_update import Block, ModalUpdate, im_weights, layout
 
 
 @dataclass
@@ -83,7 +83,7 @@ def _exponentials_of(lam: np.ndarray, h: float) -> tuple[np.ndarray, ...]:
 
 
 def coefficients(system: LinearSystem, h: float) -> Coefficients:
-    """The step constants of every impact (see :func:`batcert.physics.march.march`).
+    """The step constants of every impact (see :func:`batcert.engines.kernel.march.march`).
 
     The modal coordinates are kept scaled, ``Y = c_y Z`` with ``c_y = g / omega_d`` the
     contact-point displacement per ``Im(Z)``: the free motion of the contact point is then

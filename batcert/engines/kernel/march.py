@@ -8,12 +8,12 @@ the ball's law (:mod:`batcert.physics.balls`), through its time-stepping state: 
 each stage of a step, its own internal variables advanced with the step, and a contact measure
 whose fall through zero is separation. :mod:`batcert.engines.flexible` builds the
 :class:`LinearSystem` of each impact and reads the :class:`Separation`; the
-:class:`~batcert.physics.linear_system.LinearSystem` is the impacts' linear part.
+:class:`~batcert.engines.kernel.linear_system.LinearSystem` is the impacts' linear part.
 
-The physics of a step and the speed machinery are apart: :mod:`batcert.physics.etdrk4` holds
-the scheme's constants, :mod:`batcert.physics.march_step` the step itself, and
-:mod:`batcert.physics.modal_update` how the modal state is laid out in memory and advanced
-(:class:`~batcert.physics.modal_update.ModalUpdate`: row by row, the reference, or one matrix
+The physics of a step and the speed machinery are apart: :mod:`batcert.engines.kernel.etdrk4` holds
+the scheme's constants, :mod:`batcert.engines.kernel.march_step` the step itself, and
+:mod:`batcert.engines.kernel.modal_update` how the modal state is laid out in memory and advanced
+(:class:`~batcert.engines.kernel.modal_update.ModalUpdate`: row by row, the reference, or one matrix
 product per run of rows that share their modes; tests/physics/test_march.py compares them).
 """
 
@@ -24,9 +24,9 @@ from typing import Any
 
 import numpy as np
 
-from batcert.physics.etdrk4 import coefficients
-from batcert.physics.linear_system import LinearSystem
-from batcert.physics.march_step import State, step, step_coupled, unscaled
+from batcert.engines.kernel.etdrk4 import coefficients
+from batcert.engines.kernel.linear_system import LinearSystem
+from batcert.engines.kernel.march_step import State, step, step_coupled, unscaled
 
 # a batch is integrated in chunks of about this many (impact, mode) entries (bounded memory),
 # while each step's modal update runs over cache-sized pieces of them (modal_update.py;
@@ -70,7 +70,7 @@ def march(system: LinearSystem, law, approach_speed, time_step: float, max_time:
     ``u_c = U1 + c0 F0 + cb Fb + ca Fa``, where ``U2``, ``U1`` are the free (force-less)
     motions over h/2 and h; those, and the compression at the step's end, are read from the
     modal coordinates with one matrix product when the step advances them
-    (:mod:`batcert.physics.modal_update`). Finished impacts are recorded and, once they are
+    (:mod:`batcert.engines.kernel.modal_update`). Finished impacts are recorded and, once they are
     many, dropped from the arrays (:meth:`State.take`). Batches larger than ``chunk`` impacts
     (default: about ``_CHUNK_ENTRIES`` impact-mode entries) are integrated ``chunk`` at a
     time, so that memory stays bounded whatever the batch.

@@ -1,8 +1,8 @@
 """The linear part of a batch of impacts, and several batches stacked into one.
 
 Each impact (row) is a merged rigid/ball coordinate and ``K`` flexible modes coupled to the
-ball through their gains at the contact (:mod:`batcert.physics.march` integrates them); the
-gains may follow the ball's compression, group by group (:mod:`batcert.physics.coupling`).
+ball through their gains at the contact (:mod:`batcert.engines.kernel.march` integrates them); the
+gains may follow the ball's compression, group by group (:mod:`batcert.engines.kernel.coupling`).
 Units: SI.
 """
 
@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from batcert.physics import coupling as coupling_module
-from batcert.physics.coupling import Coupling
+from batcert.engines.kernel import coupling as coupling_module
+from batcert.engines.kernel.coupling import Coupling
 
 
 @dataclass
@@ -104,8 +104,8 @@ def stack_systems(systems: list[LinearSystem]) -> tuple[LinearSystem, list[np.nd
 
 
 def _stack_coupled(systems: list[LinearSystem]) -> tuple[LinearSystem, list[np.ndarray]]:
-    """:func:`stack_systems` of systems with a :class:`~batcert.physics.coupling.Coupling`:
-    the columns aligned by its groups (:func:`batcert.physics.coupling.stack`)."""
+    """:func:`stack_systems` of systems with a :class:`~batcert.engines.kernel.coupling.Coupling`:
+    the columns aligned by its groups (:func:`batcert.engines.kernel.coupling.stack`)."""
     coupling, columns = coupling_module.stack(
         [sy.coupling for sy in systems], [sy.omega.shape[1] for sy in systems],
         [sy.omega.shape[0] for sy in systems])

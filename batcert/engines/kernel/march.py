@@ -27,6 +27,7 @@ import numpy as np
 from batcert.engines.kernel.etdrk4 import coefficients
 from batcert.engines.kernel.linear_system import LinearSystem
 from batcert.engines.kernel.march_step import State, step, step_coupled, unscaled
+from batcert.physics.balls.law import MarchState
 
 # a batch is integrated in chunks of about this many (impact, mode) entries (bounded memory),
 # while each step's modal update runs over cache-sized pieces of them (modal_update.py;
@@ -58,7 +59,7 @@ class Separation:
         return cls(**{name: cat(name) for name in vars(parts[0])})
 
 
-def march(system: LinearSystem, law, approach_speed, time_step: float, max_time: float,
+def march(system: LinearSystem, law: MarchState, approach_speed, time_step: float, max_time: float,
           chunk: int | None = None) -> Separation:
     """Integrate all impacts from first touch to separation (ETDRK4; module notes).
 
@@ -79,13 +80,14 @@ def march(system: LinearSystem, law, approach_speed, time_step: float, max_time:
     ----------
     system : LinearSystem
         Linear part of each impact.
-    law
-        The ball law's time-stepping state, one row per impact (a law's ``march_rows``, e.g.
-        :class:`~batcert.physics.balls.hysteresis.HysteresisMarch`): ``start``, ``half_a``,
-        ``half_b``, ``end`` give the force at a step's stages, ``finish`` advances the law over
-        the step and returns its contact measure (the impact separates where it falls to zero
-        or below), ``prepare`` (optional) runs before each step, ``stored``, ``absorbed`` and
-        ``take`` serve the diagnostics and the dropping of finished rows. A law whose force
+    law : MarchState
+        The ball law's time-stepping state, one row per impact
+        (:class:`~batcert.physics.balls.law.MarchState`, a law's ``march_rows``):
+        ``start``, ``half_a``, ``half_b``, ``end`` give the force at a step's stages,
+        ``finish`` advances the law over the step and returns its contact measure (the impact
+        separates where it falls to zero or below), ``prepare`` runs before each step,
+        ``stored``, ``absorbed`` and ``take`` serve the diagnostics and the dropping of
+        finished rows. A law whose force
         falls through zero with a finite slope (``crossing``, the viscoelastic law) has the
         impulse of its last step taken up to the separation only, the force falling linearly
         to zero (trapezoidal): the clipped stages past it would leave an error of the step's
@@ -112,7 +114,7 @@ def march(system: LinearSystem, law, approach_speed, time_step: float, max_time:
     return Separation.concatenate(parts)
 
 
-def _march(system: LinearSystem, law, approach_speed, time_step: float,
+def _march(system: LinearSystem, law: MarchState, approach_speed, time_step: float,
            max_time: float) -> Separation:
     h = float(time_step)
     n, k_modes = system.omega.shape
@@ -129,12 +131,10 @@ def _march(system: LinearSystem, law, approach_speed, time_step: float,
                      modal=np.zeros((n, k_modes), dtype=complex),
                      barrel_share=np.zeros(n) if system.shell_columns is not None else None,
                      absorbed=np.zeros(n) if law.absorbed() is not None else None)
-    prepares = hasattr(law, "prepare")
-    crossing = getattr(law, "crossing", False)
+    crossing = law.crossing
     t = 0.0
     for _ in range(int(np.ceil(max_time / h))):
-        if prepares:  # e.g. Nathan's law: the loss follows the compression so far
-            law.prepare(st.u_top, st.rows)
+        law.prepare(st.u_top, st.rows)  # e.g. Nathan's law: the loss follows u_top
         u_new = advance(st, c, law, h, shell)
         g_new = law.finish(u_new)
         t += h

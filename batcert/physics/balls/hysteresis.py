@@ -39,6 +39,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from batcert.physics.balls.law import MarchState
 from batcert.physics.balls.power_law import (
     contact_force,
     deformation_work,
@@ -170,7 +171,8 @@ class PowerLawHysteresis:
         return body_impact(state, mass, v, k, times, history=history, steps=steps or STEPS)
 
     @staticmethod
-    def state_of(laws, masses, which, scale=1.0, rule: str = "compression", speed=None):
+    def state_of(laws, masses, which, scale=1.0, rule: str = "compression",
+                 speed=None) -> MarchState:
         """The time-stepping state of rows of several balls of this law
         (:meth:`HysteresisMarch.of`)."""
         return HysteresisMarch.of(laws, masses, which, scale, rule, speed)
@@ -220,6 +222,8 @@ class HysteresisMarch:
     restitution exponent follows the largest compression (:meth:`prepare`, the
     ``"compression"`` rule), fixed once it has peaked. The contact measure is the compression
     itself (the force vanishes exactly when it does)."""
+
+    crossing = False  # the force vanishes with the compression (MarchState)
 
     def __init__(self, k1, alpha, beta, restitution=None):
         self.lk1 = np.log(np.asarray(k1, dtype=float))

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from batcert import workspace
+from batcert.physics.balls.law import MarchState
 
 STEPS = 300  # steps per estimated contact time (COR converged to about 1e-7, tests)
 _MAX_STEPS_FACTOR = 12  # give up (flagged, not separated) after this many contact times
@@ -54,7 +55,7 @@ def contact_time_estimate(speed, reduced_mass, stiffness, exponent):
     return 3.0 * um / v
 
 
-def body_impact(state, mass: float, speed, recoil=0.0, time_scale=None,
+def body_impact(state: MarchState, mass: float, speed, recoil=0.0, time_scale=None,
                 fraction: float = 0.99, steps: int = STEPS, history: bool = True) -> BodyImpact:
     # long (about 90 lines, a third of them the docstring): one loop of the classical RK4 with
     # the separation caught inside it; cut into functions, the per-step state (compression,
@@ -101,10 +102,9 @@ def body_impact(state, mass: float, speed, recoil=0.0, time_scale=None,
     out_top, out_peak, out_sep = np.zeros(n), np.zeros(n), np.zeros(n)
     history_t, history_j = [np.zeros(n)], [np.zeros(n)]
     rows = np.arange(n)
-    crossing = getattr(state, "crossing", False)
+    crossing = state.crossing
     for step in range(1, steps * _MAX_STEPS_FACTOR + 1):
-        if hasattr(state, "prepare"):
-            state.prepare(u_top, rows)
+        state.prepare(u_top, rows)
         f0 = state.start(u, u_top)
         ua, va = u + 0.5 * h * v, v - 0.5 * h * inv_mu * f0
         fa = state.half_a(ua)

@@ -2,7 +2,7 @@
 engines, the fit, the runner and ``inspect`` use, so that none of them names a law.
 
 A new law is a frozen dataclass of its parameters with these methods, its time-stepping state
-(``march_rows``, :func:`batcert.engines.kernel.march.march` documents what a state provides), and an
+(``march_rows``, a :class:`MarchState`), and an
 entry in :data:`~batcert.physics.balls.LAWS`; the ball file's fields for it are
 :mod:`batcert.specs.ball`'s.
 """
@@ -12,6 +12,70 @@ from __future__ import annotations
 from typing import Any, ClassVar, Protocol
 
 import numpy as np
+
+
+class MarchState(Protocol):
+    """A ball law's state through a batched time integration, one row per impact: what
+    :func:`batcert.engines.kernel.march.march` and the ball against a rigid body
+    (:func:`batcert.physics.balls.impact1d.body_impact`) ask of it (a law's ``march_rows``
+    and ``state_of`` make one). Forces [N], compressions [m], arrays (n,) for the rows now
+    integrated.
+
+    A step is :meth:`prepare`, then the force at its four stages (:meth:`start` with the
+    largest compression so far, :meth:`half_a`, :meth:`half_b`, :meth:`end`, each at the
+    stage's compression), then :meth:`finish` at the step's end compression."""
+
+    # the force falls through zero with a finite slope (a viscoelastic ball leaves still
+    # compressed): the march takes the last step's impulse up to the separation only
+    crossing: bool
+
+    def for_step(self, h) -> MarchState:
+        """The state with the step ``h`` [s] (a scalar, or one per row) fixed: the constants
+        its stages use."""
+        ...
+
+    def prepare(self, u_top: np.ndarray, rows: np.ndarray) -> None:
+        """Before each step: what follows the largest compression so far ``u_top`` (Nathan's
+        restitution exponent); ``rows``: the rows' indices in the whole batch. May do nothing."""
+        ...
+
+    def start(self, u: np.ndarray, u_top: np.ndarray) -> np.ndarray:
+        """The force at the step's start."""
+        ...
+
+    def half_a(self, u: np.ndarray) -> np.ndarray:
+        """The force at the first half-step stage."""
+        ...
+
+    def half_b(self, u: np.ndarray) -> np.ndarray:
+        """The force at the second half-step stage."""
+        ...
+
+    def end(self, u: np.ndarray) -> np.ndarray:
+        """The force at the step's end stage."""
+        ...
+
+    def finish(self, u_new: np.ndarray) -> np.ndarray:
+        """Advance over the step; the contact measure at its end (the impact separates where it
+        falls to zero or below)."""
+        ...
+
+    def stored(self, rows: np.ndarray, top: np.ndarray) -> np.ndarray:
+        """The energy the ball holds at its largest compression ``top`` [J], for ``rows``."""
+        ...
+
+    def absorbed(self) -> np.ndarray | None:
+        """The work done on the ball so far [J], or None where the engine has the ball's loss
+        in closed form (:meth:`ContactLaw.separation_loss`)."""
+        ...
+
+    def take(self, keep) -> MarchState:
+        """The rows ``keep`` (indices, a mask or a slice)."""
+        ...
+
+    def offset(self, start: int) -> MarchState:
+        """These rows as rows ``start`` on of a larger batch."""
+        ...
 
 
 class ContactLaw(Protocol):
@@ -54,12 +118,13 @@ class ContactLaw(Protocol):
         ...
 
     def march_rows(self, n: int, mass: float, scale=1.0, rule: str = "compression",
-                   speed=None) -> Any:
+                   speed=None) -> MarchState:
         """Its state for ``n`` rows of a batched time integration."""
         ...
 
     @staticmethod
-    def state_of(laws, masses, which, scale=1.0, rule: str = "compression", speed=None) -> Any:
+    def state_of(laws, masses, which, scale=1.0, rule: str = "compression",
+                 speed=None) -> MarchState:
         """The time-stepping state of rows of balls of this law (``which``: each row's ball
         among ``laws``, ``masses``)."""
         ...

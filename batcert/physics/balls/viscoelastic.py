@@ -47,6 +47,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from batcert.physics.balls.law import MarchState
 from batcert.physics.etd import phi_functions
 
 _TINY = 1e-300  # floor of the compression inside log() [m]
@@ -154,7 +155,8 @@ class Viscoelastic:
                            steps=steps or STEPS)
 
     @staticmethod
-    def state_of(laws, masses, which, scale=1.0, rule: str = "compression", speed=None):
+    def state_of(laws, masses, which, scale=1.0, rule: str = "compression",
+                 speed=None) -> MarchState:
         """The time-stepping state of rows of several balls of this law
         (:meth:`ViscoelasticMarch.of`)."""
         return ViscoelasticMarch.of(laws, masses, which, scale, rule, speed)
@@ -260,6 +262,9 @@ class ViscoelasticMarch:
     def _g(self, x, s):
         """The contact measure ``k0 u^a - sum_j k_j s_j`` (before clipping) [N], (n,)."""
         return self.k0 * x - self._pull(s)
+
+    def prepare(self, u_top, rows) -> None:
+        """Nothing follows the largest compression (MarchState)."""
 
     def start(self, u, u_top=None):
         e2, _, q, *_ = self._coef  # type: ignore[misc]

@@ -8,6 +8,7 @@ import contextlib
 import os
 import sys
 from pathlib import Path
+from typing import Any
 
 # The engine's matrices are small (a few hundred DOFs): a second BLAS thread only spins, doubling
 # CPU time, and under load slows small factorisations tenfold (measured). Set before numpy loads;
@@ -268,10 +269,11 @@ class _Batcert(click.Group):
         """As click's, but an interrupt outside a command's own guard (while the arguments are
         parsed) exits 130 with one line, as inside it, not with click's "Aborted!" and exit 1,
         which a script reads as "a verdict fails"."""
+        click_main: Any = super().main  # its overloads by standalone_mode's literal
         if not standalone_mode:
-            return super().main(*args, standalone_mode=False, **kwargs)
+            return click_main(*args, standalone_mode=False, **kwargs)
         try:
-            code = super().main(*args, standalone_mode=False, **kwargs)
+            code = click_main(*args, standalone_mode=False, **kwargs)
         except click.Abort as exc:
             if isinstance(exc.__cause__, _Terminated):
                 console.error("terminated")

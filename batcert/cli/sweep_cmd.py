@@ -151,7 +151,8 @@ Examples:
               help="The parameter to solve for (the names of `batcert sweep`).")
 @click.option("--range", "range_text", default=None, metavar="A:B",
               help="Where to look, with units or as percent of nominal [default: 50%:150%].")
-@click.option("--points", type=click.IntRange(*BOUNDS["points"]), default=9, show_default=True,
+@click.option("--points", type=click.IntRange(int(BOUNDS["points"][0]), int(BOUNDS["points"][1])),
+              default=9, show_default=True,
               help="Points of the margin curve that brackets the roots.")
 @click.option("--tolerance", default=None, help="Locate the root to within this (with its "
               "unit, e.g. '0.001 mm') [default: the parameter's own, see docs/sweeps.md].")

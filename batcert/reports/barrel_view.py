@@ -15,7 +15,7 @@ def compression_table(result: RunResult) -> Table | None:
     c = result.compression
     if c is None:
         return None
-    rows = [["Platens' centre from the tip", fmt.quantity(c.position, "length")],
+    rows: list[list[Any]] = [["Platens' centre from the tip", fmt.quantity(c.position, "length")],
             ["Platen width along the bat", fmt.quantity(c.platen_width, "length")],
             ["Approach of the platens", fmt.quantity(c.deflection, "length", 6)],
             ["Force on one platen (model)", fmt.quantity(c.force, "force", 0)],

@@ -149,7 +149,7 @@ def _values(result: ComparisonResult, p: ProtocolComparison, show_setup: bool) -
             + [fmt.percent(c.bats[lab].relative) for lab in compared] for c in p.conditions]
     pad = [""] * (len(labels) + (1 if show_setup else 0))
     spread = p.relative_spread
-    foot = [
+    foot: list[list[Any]] = [
         ["mean of P across conditions"] + pad + [fmt.percent(spread[lab].mean) for lab in compared],
         ["std of P (population)"] + pad + [fmt.percent_std(spread[lab].std) for lab in compared],
         ["range of P (min to max)"] + pad

@@ -89,9 +89,9 @@ def _draw_bars(ax, fig: BarFigure) -> None:
     if fig.baseline is None:
         vals = [v for s in fig.series for v in s.values if v is not None]
         if vals:
-            lo, hi = min(vals), max(vals)
-            pad = 0.1 * (hi - lo or abs(hi) or 1.0)
-            ax.set_ylim(lo - pad, hi + pad)
+            least, most = min(vals), max(vals)
+            pad = 0.1 * (most - least or abs(most) or 1.0)
+            ax.set_ylim(least - pad, most + pad)
     if fig.limit is not None:
         ax.axhline(fig.limit, color="#222222", linestyle=(0, (6, 3)), linewidth=1.2)
         ax.annotate(f"limit {fig.value_format.format(fig.limit)}", (1.0, fig.limit),

@@ -100,7 +100,8 @@ def league_view(result: LeagueResult) -> dict[str, Any]:
     """Everything the league report shows, formatted; the templates only arrange it."""
     head_badge, sentence = overall(result.bats)
     verdicts = ("pass", "fail", "not-modelled", "not-applicable")
-    summary, bats = [], []
+    summary: list[dict[str, Any]] = []
+    bats: list[dict[str, Any]] = []
     for i, b in enumerate(result.bats):
         anchor = f"bat-{i + 1}"
         counts = {v: sum(r.verdict == v for r in b.rules) for v in verdicts}

@@ -3,6 +3,7 @@ measured hits, makes one): everything its Markdown and HTML show, formatted."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 from batcert.reports import format as fmt
@@ -13,28 +14,42 @@ from batcert.results.run import RunResult
 from batcert.units import Display, to_us, us_unit
 
 
-def verdict(result: RunResult) -> dict[str, Any]:
+@dataclass(frozen=True)
+class ShownVerdict:
+    """A run's verdict as its reports show it: the badge's ``label`` and ``css`` class, the
+    formatted value, limit, tolerance and margin (None without a limit), the ``sentence``
+    stating the value against the limit, the ``basis`` (a model prediction) and the model's
+    known ``offset`` for the metric ("" if none)."""
+
+    label: str
+    css: str
+    value: Display
+    limit: Display | None
+    tolerance: Display | None
+    margin: Display | None
+    sentence: str
+    basis: str
+    offset: str
+
+
+def verdict(result: RunResult) -> ShownVerdict:
     """Badge text and the sentence stating the value against the limit."""
     name, m = fmt.metric_name(result.metric), result.metric
     value = fmt.metric_value(result.value, m)
     if result.verdict is None or result.limit is None:
-        return {"label": "NO LIMIT", "css": "none", "value": value, "limit": None,
-                "tolerance": None, "margin": None,
-                "sentence": f"Predicted {name} {value}; the protocol sets no limit.",
-                "basis": basis(result), "offset": offset(result)}
+        return ShownVerdict("NO LIMIT", "none", value, None, None, None,
+                            f"Predicted {name} {value}; the protocol sets no limit.",
+                            basis(result), offset(result))
     limit, tol = fmt.metric_value(result.limit, m), fmt.metric_value(result.tolerance, m)
     margin = fmt.metric_value(result.margin, m, signed_=True)
     passed = result.verdict.lower() == "pass"
     relation = "\u2264" if passed else ">"
     tol_text = f" + tolerance {tol}" if result.tolerance else ""
-    return {
-        "label": "PREDICTED PASS" if passed else "PREDICTED FAIL",
-        "css": "pass" if passed else "fail",
-        "value": value, "limit": limit, "tolerance": tol, "margin": margin,
-        "sentence": f"Predicted {name} {value} {relation} limit {limit}{tol_text}; "
-                    f"margin {margin}.",
-        "basis": basis(result), "offset": offset(result),
-    }
+    return ShownVerdict(
+        "PREDICTED PASS" if passed else "PREDICTED FAIL", "pass" if passed else "fail",
+        value, limit, tol, margin,
+        f"Predicted {name} {value} {relation} limit {limit}{tol_text}; margin {margin}.",
+        basis(result), offset(result))
 
 
 TITLE = "Predicted bat performance"  # a run's report: a model prediction, never a certificate
@@ -267,7 +282,7 @@ def run_view(result: RunResult) -> dict[str, Any]:
         "corrections": corrections_table(result),
         "engine": engine_table(result),
         "modes": modes_table(result),
-        "print_header": f"{result.bat} \u2014 {result.protocol} \u2014 {shown['label']}",
+        "print_header": f"{result.bat} \u2014 {result.protocol} \u2014 {shown.label}",
         "show_metric_plot": shows_metric_plot(result),
         "uncertainty": uncertainty_view(result),
         "compression": compression_table(result),

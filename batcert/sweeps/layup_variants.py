@@ -96,10 +96,12 @@ def _split_apply(case: Case, built: BuiltBat, value: float) -> Case:
 
 LAYUP_PARAMETERS = (
     Parameter("ply_angle", "ply angle", None, "geometry", "The angle [deg, from the bat's "
-              "axis] of every balanced (±) layer of the barrel's layup.", _angle_nominal,
+              "axis] of every balanced (±) layer of the barrel's layup (the span holding the "
+              "barrel's middle).", _angle_nominal,
               _angle_apply, (0.0, 90.0), 0.01, unit="deg"),
     Parameter("ply_count", "barrel plies", None, "geometry", "The barrel wall's thickness in "
-              "plies of its thinnest layer; every layer scales in proportion.", _count_nominal,
+              "plies of its thinnest layer; every layer scales in proportion (a fractional "
+              "count is a proportional thickness).", _count_nominal,
               _count_apply, (1.0, 200.0), 0.01),
     Parameter("wall_split", "outer wall share", None, "geometry", "A multi-wall barrel: the "
               "outer wall's share of the wall thickness (the inner walls share the rest in "

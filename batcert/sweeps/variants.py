@@ -211,34 +211,37 @@ _mass, _moi, _hoop = _measured("mass"), _measured("moi"), _measured("hoop_freque
 
 PARAMETERS: dict[str, Parameter] = {p.name: p for p in (
     _param("wall", "wall thickness", "length", "geometry", "Wall thickness of a hollow bat: "
-           "the thickest station (the barrel) takes the value and every station scales in proportion.",
+           "the thickest wall station (the barrel) takes the value; every station scales in "
+           "proportion.",
            _wall_nominal, _wall_apply, (1e-4, 0.02), 1e-6),
     _param("youngs_modulus", "Young's modulus", "modulus", "geometry", "The material's "
-           "stiffness: Young's modulus (the shear modulus scales with it).", lambda c, b: _material(c).youngs_modulus,
+           "Young's modulus; the shear modulus scales with it.", lambda c, b: _material(c).youngs_modulus,
            _material_apply(youngs_modulus="youngs_modulus", shear_modulus="shear_modulus"),
            (1e8, 1e12), 1e6),
     _param("density", "density", "density", "geometry", "The material's density.",
            lambda c, b: _material(c).density, _material_apply(density="density"),
            (100.0, 20000.0), 0.1),
-    _param("barrel_diameter", "barrel diameter", "length", "geometry", "Barrel diameter: the handle and knob keep "
-           "theirs and the taper stretches to the new barrel.", _barrel_nominal, _barrel_apply,
+    _param("barrel_diameter", "barrel diameter", "length", "geometry", "The barrel takes the value; beyond "
+           "the handle's thinnest station each diameter `d` becomes `h + (d - h)(D' - h)/(D - h)` "
+           "(`h` handle, `D` nominal barrel), so the taper stretches and the handle and knob keep "
+           "theirs.", _barrel_nominal, _barrel_apply,
            (0.005, 0.15), 1e-5),
-    _param("mass", "mass", "mass", "measured", "The measured mass (the CG and MOI stay as measured).",
+    _param("mass", "mass", "mass", "measured", "The measured mass; CG and MOI stay as measured.",
            _mass[0], _mass[1], (0.1, 3.0), 1e-4),
-    _param("moi", "MOI about the pivot", "moi", "measured", "The measured MOI about the measured pivot (the mass and "
-           "CG stay as measured).", _moi[0], _moi[1], (1e-4, 10.0), 1e-6),
+    _param("moi", "MOI about the pivot", "moi", "measured", "The measured MOI about the measured pivot; "
+           "mass and CG stay.", _moi[0], _moi[1], (1e-4, 10.0), 1e-6),
     _param("hoop_frequency", "hoop frequency", "frequency", "measured", "The measured barrel hoop (n = 2) "
            "frequency of a hollow bat; the barrel is calibrated to it.", _hoop[0], _hoop[1],
            (100.0, 20000.0), 0.5),
     *LAYUP_PARAMETERS,
     _param("pitch_speed", "pitch speed", "speed", "protocol", "Ball speed toward the bat, in every condition "
-           "that pitches the ball (stationary-ball set-ups stay stationary unless no "
-           "condition pitches).", _speed_nominal("pitch_speed"), _speed_apply("pitch_speed"),
-           (0.0, 300.0), 0.01),
+           "that pitches the ball (a stationary-ball set-up stays at rest, unless no condition "
+           "pitches: then every condition with explicit speeds).", _speed_nominal("pitch_speed"),
+           _speed_apply("pitch_speed"), (0.0, 300.0), 0.01),
     _param("bat_angular_speed", "bat angular speed", "angular_speed", "protocol", "Bat angular speed about the "
            "pivot, in every condition that swings the bat at explicit speeds (replaces a "
-           "linear bat speed; stationary-bat set-ups stay stationary unless no condition "
-           "swings).",
+           "linear `bat_speed`; a stationary-bat set-up stays at rest, unless no condition "
+           "swings, as in `ncaa-bbcor`).",
            _speed_nominal("bat_angular_speed"), _speed_apply("bat_angular_speed"),
            (0.0, 2000.0), 0.01),
     _param("relative_speed", "relative speed", "speed", "protocol", "Matched relative normal speed, in every "

@@ -29,3 +29,16 @@ def test_the_top_level_names_are_the_apis():
     from batcert import api
     assert set(api.__all__) < set(dir(batcert))
     assert batcert.run is api.run
+
+
+def test_a_result_prints_in_one_short_line():
+    # the dataclass's own repr printed every condition's sweep samples: thousands of lines for
+    # one run at the interpreter prompt
+    import batcert
+    result = batcert.run("ash-34", "ncaa-bbcor", engine="rigid")
+    text = repr(result)
+    assert "\n" not in text and len(text) < 200
+    assert text.startswith("RunResult(bat='Ash 34 in") and "protocol='ncaa-bbcor'" in text
+    assert f"value={result.value:.6g}" in text and "engine='rigid'" in text
+    league = repr(batcert.league("ncaa", ["ash-34", "aluminium-34"], engine="rigid"))
+    assert league.startswith("LeagueResult(league='ncaa', bats=[2]")

@@ -133,9 +133,10 @@ class StudyFigure:
     bats: list[StudyFigureBat]
 
 
-@dataclass
+@dataclass(repr=False)
 class ComparisonResult(Serialisable):
     KIND = "comparison"
+    SUMMARY = ("reference", "bats", "protocols", "claims", "engine")
 
     title: str
     study: str | None

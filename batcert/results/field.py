@@ -90,9 +90,10 @@ class FieldBatter:
     distance_per_exit_speed: float  # d(distance)/d(exit speed) at its best hit [s]
 
 
-@dataclass
+@dataclass(repr=False)
 class FieldResult(Serialisable):
     KIND = "field"
+    SUMMARY = ("reference", "bats", "batters", "engine")
 
     reference: str  # the reference bat's name
     engine: str

@@ -111,9 +111,10 @@ class LabLocation:
     std: float | None  # sample standard deviation
 
 
-@dataclass
+@dataclass(repr=False)
 class LabResult(Serialisable):
     KIND = "lab"
+    SUMMARY = ("bat", "protocol", "metric", "value", "expanded", "verdict")
 
     session: str
     session_path: str

@@ -50,9 +50,10 @@ class BatLeagueResult:
         return "incomplete" if "not-modelled" in verdicts else "pass"
 
 
-@dataclass
+@dataclass(repr=False)
 class LeagueResult(Serialisable):
     KIND = "league"
+    SUMMARY = ("league", "bats", "engine")
 
     league: str
     title: str

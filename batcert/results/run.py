@@ -195,9 +195,10 @@ class InputFile:
     sha256: str
 
 
-@dataclass
+@dataclass(repr=False)
 class RunResult(Serialisable):
     KIND = "run"
+    SUMMARY = ("bat", "protocol", "metric", "value", "verdict", "engine")
 
     protocol: str  # protocol id
     protocol_title: str

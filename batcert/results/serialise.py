@@ -127,6 +127,24 @@ class Serialisable:
     starts with ``schema`` and its ``kind`` (the class's ``KIND``)."""
 
     KIND: typing.ClassVar[str] = ""
+    # the fields a short repr shows (a result dataclass sets ``repr=False`` to use it: the
+    # generated repr of a run printed every sweep sample, thousands of lines)
+    SUMMARY: typing.ClassVar[tuple[str, ...]] = ()
+
+    def __repr__(self) -> str:
+        """``RunResult(bat='Ash 34 in', protocol='ncaa-bbcor', value=0.49, ...)``: the
+        :data:`SUMMARY` fields, lists by their length, floats to six digits."""
+        parts = []
+        for name in self.SUMMARY:
+            value = getattr(self, name)
+            if isinstance(value, list):
+                text = f"[{len(value)}]"
+            elif isinstance(value, float):
+                text = f"{value:.6g}"
+            else:
+                text = repr(value)
+            parts.append(f"{name}={text}")
+        return f"{type(self).__name__}({', '.join(parts)})"
 
     def to_dict(self) -> dict[str, Any]:
         return {"schema": SCHEMA, "kind": self._kind(), **self._document()}

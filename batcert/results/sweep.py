@@ -62,9 +62,10 @@ class NominalRun:
     error: str | None = None
 
 
-@dataclass
+@dataclass(repr=False)
 class SweepResult(Serialisable):
     KIND = "sweep"
+    SUMMARY = ("bat", "protocol", "metric", "axes", "points", "engine")
 
     bat: str
     bat_path: str

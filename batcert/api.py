@@ -41,9 +41,15 @@ _chosen = [False]  # whether use_cache was called (else the first call turns the
 
 def use_cache(on: bool = True) -> None:
     """Keep (``on``) or stop keeping costly intermediate results in batcert's cache directory
-    (``$BATCERT_CACHE_DIR``, else ``~/.cache/batcert``; :mod:`batcert.cache`) as well as in
-    the process (the active :class:`batcert.workspace.Workspace`). Deleting the directory is
-    always safe."""
+    as well as in the process.
+
+    Parameters
+    ----------
+    on : bool
+        Keep them in ``$BATCERT_CACHE_DIR``, else ``~/.cache/batcert`` (:mod:`batcert.cache`),
+        besides the active :class:`batcert.workspace.Workspace`. Deleting the directory is
+        always safe.
+    """
     from batcert import workspace
     _chosen[0] = True
     if not on:
@@ -59,14 +65,51 @@ def _ready() -> None:
 
 
 def load_bat(bat: str | Path) -> LoadedBat:
-    """A bat file (a path or a shipped name), validated, built and reconciled to its measured
-    mass, CG and MOI. ``.built.spec`` is the file's content; ``.built`` the model."""
+    """A bat file, validated, built and reconciled to its measured mass, CG and MOI.
+
+    Parameters
+    ----------
+    bat : str or Path
+        A shipped name (``"ash-34"``) or the path of a bat YAML (docs/inputs.md).
+
+    Returns
+    -------
+    LoadedBat
+        ``.built.spec`` is the file's content in SI units; ``.built.model`` the beam model
+        (lengths [m], masses [kg], MOI [kg m^2]). Any function here takes it where a bat goes.
+
+    Raises
+    ------
+    batcert.InputError
+        Every problem of the file, with its line; ``batcert.NotFound`` for an unknown name.
+
+    References
+    ----------
+    docs/reconciliation.md (the reconciliation to measured mass properties).
+    """
     _ready()
     return _bat(bat)
 
 
 def load_protocol(protocol: str | Path) -> ProtocolInputs:
-    """A protocol (a path or a shipped id) with its ball, validated."""
+    """A protocol with its ball, validated.
+
+    Parameters
+    ----------
+    protocol : str or Path
+        A shipped id (``"ncaa-bbcor"``, ``"proposed"``) or the path of a protocol YAML.
+
+    Returns
+    -------
+    ProtocolInputs
+        ``.protocol`` (conditions with speeds [m/s] and [rad/s], pivot [m], impact rule,
+        metric, limit) and ``.ball`` (its ball, the lot calibrated where the ball file says).
+
+    References
+    ----------
+    L. V. Smith, "Evaluating baseball bat performance", Sports Engineering 4 (2001) 205-214
+    (the set-ups and metrics); docs/inputs.md (the fields).
+    """
     return _protocol(protocol)
 
 
@@ -144,9 +187,33 @@ def compare(bats: Sequence[str | Path | LoadedBat], protocols: Sequence[str | Pa
             study: str | None = None, reference: str | Path | LoadedBat | None = None,
             engine: str = "flexible", figures: bool = False) -> ComparisonResult:
     """Two or more bats under the same protocols (or a study's), with the relative performance
-    of each against the reference (Smith 2001 Eq. 6) and, for a study, its claims checked;
-    ``figures``: also the study's figures (sweeps of every bat, a few seconds; without them
-    the claims that read a figure are not tested, and say so)."""
+    of each against the reference and, for a study, its claims checked.
+
+    Parameters
+    ----------
+    bats : sequence of str, Path or LoadedBat
+        At least two bats.
+    protocols : sequence of str or Path
+        The protocols to run each bat under (or give ``study``).
+    study : str, optional
+        A study file or shipped id (``"smith2001"``): its protocols, bats and claims.
+    reference : str, Path or LoadedBat, optional
+        The bat every other is compared with (default: the first, or the study's).
+    engine : {"flexible", "rigid"}
+    figures : bool
+        Also the study's figures (sweeps of every bat, a few seconds; without them the claims
+        that read a figure are not tested, and say so).
+
+    Returns
+    -------
+    ComparisonResult
+        Per protocol and condition each bat's metric and its relative performance
+        ``P = (P_a - P_w) / P_w`` [-] against the reference; the claims' verdicts.
+
+    References
+    ----------
+    Smith (2001), Eq. 6 (relative performance); docs/validation.md, section 4 (the replay).
+    """
     from batcert.commands.compare import run_comparison
     _ready()
     bat_names = _named(bats, "bats", "bat")
@@ -166,7 +233,27 @@ def _flag(name: str, value) -> bool:
 
 def league(league_id: str | Path, bats: Sequence[str | Path | LoadedBat],
            engine: str = "flexible") -> LeagueResult:
-    """Every rule of a league (shipped id or file) on every bat."""
+    """Every rule of a league on every bat.
+
+    Parameters
+    ----------
+    league_id : str or Path
+        A shipped league (``"ncaa"``, ``"usssa"``, ...) or a league YAML.
+    bats : sequence of str, Path or LoadedBat
+    engine : {"flexible", "rigid"}
+        For the rules that run a protocol (a model prediction, labelled so).
+
+    Returns
+    -------
+    LeagueResult
+        Each bat's verdict and every rule's: measured value (lengths [m], drop in inches minus
+        ounces), limit, pass, fail, not applicable or not modelled, with the metric's known
+        offset where a protocol decides.
+
+    References
+    ----------
+    The league file's own ``reference`` (its rule book); docs/validation.md (the offsets).
+    """
     from batcert.commands.league import run_league
     _ready()
     return run_league(args.name_or_path("league_id", league_id, "league"),
@@ -179,13 +266,41 @@ def field(bats: str | Path | LoadedBat | Sequence[str | Path | LoadedBat],
           pitch_speed: float | str | None = None, launch_angle: float = 28.0,
           backspin: float | None = None, sidespin: float | None = None,
           temperature: float | str = 294.261, elevation: float | str = 0.0) -> FieldResult:
-    """What ``bats`` do in play for each batter profile (shipped: ``youth-12u``,
-    ``high-school``, ``college``, ``pro``, ``fastpitch``, ``slowpitch``; a batter YAML path;
-    ``"all"``): each bat swung at the speed its MOI allows, its best batted-ball speed, sweet
-    zone, e_A and carry, and the gains over ``reference``, also under a constant swing speed.
-    ``pitch_speed`` [m/s, or ``"85 mph"``] replaces the profiles' own; ``launch_angle`` [deg];
-    spins [rpm] (default: Nathan's calculator's for the angle); ``temperature`` [K, or
-    ``"70F"``]; ``elevation`` [m, or ``"5280 ft"``]."""
+    """What ``bats`` do in play for each batter profile: each bat swung at the speed its MOI
+    allows, its best batted-ball speed, sweet zone, e_A and carry, and the gains over
+    ``reference``, also under a constant swing speed.
+
+    Parameters
+    ----------
+    bats : str, Path, LoadedBat or a sequence of them
+    batters : str or sequence of str
+        Shipped profiles (``youth-12u``, ``high-school``, ``college``, ``pro``,
+        ``fastpitch``, ``slowpitch``), batter YAML paths, or ``"all"``.
+    reference : str, Path or LoadedBat
+        The bat the gains are measured against (default ``ash-34``).
+    engine : {"flexible", "rigid"}
+    pitch_speed : float or str, optional
+        [m/s], or with its unit (``"85 mph"``); replaces the profiles' own.
+    launch_angle : float
+        [deg] above the horizontal.
+    backspin, sidespin : float, optional
+        [rpm]; default: Nathan's trajectory calculator's for the launch angle.
+    temperature : float or str
+        [K], or with its unit (``"70F"``).
+    elevation : float or str
+        [m], or with its unit (``"5280 ft"``).
+
+    Returns
+    -------
+    FieldResult
+        Per batter and bat: swing speed [m/s], batted-ball speed [m/s], carry [m] and the
+        gains over the reference (predictions, labelled so).
+
+    References
+    ----------
+    A. M. Nathan, "Dynamics of the baseball-bat collision", Am. J. Phys. 68 (2000) 979;
+    Nathan's trajectory calculator (the flight); docs/validation.md, section 4b.
+    """
     import math
 
     from batcert.commands.field import FieldSettings, run_field
@@ -207,8 +322,29 @@ def field(bats: str | Path | LoadedBat | Sequence[str | Path | LoadedBat],
 
 def sweep(bat: str | Path | LoadedBat, protocol: str | Path, vary: Sequence[str],
           engine: str = "flexible", workers: int = 1) -> SweepResult:
-    """The protocol's result over one or two varied parameters, each ``"PARAM=START:STOP:N"``
-    as on the command line (``"wall=80%:120%:5"``, ``"pitch_speed=50m/s:70m/s:3"``)."""
+    """The protocol's result over one or two varied parameters.
+
+    Parameters
+    ----------
+    bat : str, Path or LoadedBat
+    protocol : str or Path
+    vary : sequence of str
+        One or two ``"PARAM=START:STOP:N"`` as on the command line (``"wall=80%:120%:5"``,
+        ``"pitch_speed=50m/s:70m/s:3"``); the parameters are docs/sweeps.md's table.
+    engine : {"flexible", "rigid"}
+    workers : int
+        Processes to share the variants (1: this one).
+
+    Returns
+    -------
+    SweepResult
+        Every variant's value of each parameter [SI], the metric, its verdict and margin, each
+        condition's exit speed [m/s], COR, impact location [m] and the mass properties.
+
+    References
+    ----------
+    docs/sweeps.md.
+    """
     from batcert.commands.sweep import plan_sweep, run_sweep
     _ready()
     n = args.workers(workers)
@@ -230,8 +366,33 @@ def _texts(name: str, values) -> list[str]:
 def design(bat: str | Path | LoadedBat, protocol: str | Path, parameter: str,
            range_text: str | None = None, engine: str = "flexible",
            points: int | None = None) -> SweepResult:
-    """Every value of ``parameter`` in ``range_text`` (``"40m/s:75m/s"``) where the protocol's
-    metric meets its limit: ``.design.roots``."""
+    """Every value of ``parameter`` where the protocol's metric meets its limit.
+
+    Parameters
+    ----------
+    bat : str, Path or LoadedBat
+    protocol : str or Path
+        It must set a limit.
+    parameter : str
+        A sweep parameter's name (docs/sweeps.md), e.g. ``"wall"``.
+    range_text : str, optional
+        Where to look, ``"A:B"`` with units or as percent of nominal (``"40m/s:75m/s"``,
+        ``"50%:150%"``, the default).
+    engine : {"flexible", "rigid"}
+    points : int, optional
+        Points of the margin curve that brackets the roots (default 9).
+
+    Returns
+    -------
+    SweepResult
+        The margin curve, and ``.design.roots``: each value [SI] with its bracket, the mass
+        [kg] and the drop there.
+
+    References
+    ----------
+    R. P. Brent, Algorithms for Minimization without Derivatives (1973), ch. 4 (the root);
+    docs/sweeps.md.
+    """
     from batcert.commands.sweep import DEFAULT_POINTS, run_design
     _ready()
     if not isinstance(parameter, str):
@@ -247,7 +408,34 @@ def design(bat: str | Path | LoadedBat, protocol: str | Path, parameter: str,
 def reduce(session: str | Path, protocol: str | Path, decision_rule: str = "simple",
            engine: str = "flexible", bat: str | Path | LoadedBat | None = None) -> LabResult:
     """A lab session's measured hits reduced to a certified value with its uncertainty and a
-    verdict under ``decision_rule`` (docs/lab-reduction.md), beside the model's prediction."""
+    verdict, beside the model's prediction.
+
+    Parameters
+    ----------
+    session : str or Path
+        A session YAML (docs/lab-reduction.md), or a bare hits CSV with ``bat``.
+    protocol : str or Path
+        Its metric (BBCOR, BESR, BPF or e_A), location rule and limit.
+    decision_rule : {"simple", "guarded"}
+        ``simple``: the limit as written; ``guarded``: the value plus its expanded uncertainty
+        must be within it.
+    engine : {"flexible", "rigid"}
+        Of the model's prediction drawn beside the measurement.
+    bat : str, Path or LoadedBat, optional
+        For a bare hits CSV only.
+
+    Returns
+    -------
+    LabResult
+        The certified value [-], its combined and expanded (95 %) uncertainties, the
+        conformance probability, every hit reduced, the certificate's ISO/IEC 17025 record,
+        and the ball lot's calibration (an input) where the session names a reference bat.
+
+    References
+    ----------
+    ASTM F2219 (the reduction); JCGM 100:2008 and JCGM 101:2008 (the uncertainty); JCGM
+    106:2012 (the decision); ISO/IEC 17025:2017, 7.8 (the record).
+    """
     from batcert.commands.reduce import DECISION_RULES, run_reduce
     _ready()
     return run_reduce(args.name_or_path("session", session, "session"),

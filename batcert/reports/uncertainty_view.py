@@ -71,7 +71,32 @@ def summary_sentence(result: RunResult) -> str:
     if u.pass_probability is not None:
         text += (f" Probability of passing: {u.pass_probability:.3f} (Monte Carlo standard "
                  f"error {u.pass_probability_standard_error:.3f}).")
-    return text
+    return text + propagation_sentence(result)
+
+
+def _difference(value: float | None, metric: str) -> str:
+    return "none" if value is None else fmt.metric_spread(value, metric).si
+
+
+def propagation_sentence(result: RunResult) -> str:
+    """How the draws' results were found: the response surface and its check against the
+    engine, or every draw by the engine (and why, when the surface was asked for)."""
+    u = result.uncertainty
+    assert u is not None
+    p = u.propagation
+    if p is None:
+        return ""
+    m = result.metric
+    bound = fmt.metric_spread(p.bound, m).si
+    if p.method == "surrogate":
+        return (f" Surrogate: a response surface fitted on {p.design_points} engine runs gave "
+                f"the draws; on {p.checked_draws} of them it differs from the engine by at "
+                f"most {_difference(p.largest_difference, m)} (bound {bound}); "
+                f"{p.engine_draws} engine runs.")
+    if p.requested == "full":
+        return f" Every draw solved by the engine ({p.engine_draws} engine runs)."
+    return (f" Every draw solved by the engine ({p.engine_draws} engine runs), not the "
+            f"surrogate: {p.reason}.")
 
 
 def checks_table(result: RunResult) -> Table:
@@ -84,11 +109,30 @@ def checks_table(result: RunResult) -> Table:
         ["Full-run check", fmt.metric_spread(u.full_run_difference, m),
          f"largest difference, over {u.checked_draws} draws, between the Monte Carlo's result "
          "and a full run of the drawn bat (new modes, the whole search)"],
+        *_surface_rows(u, m),
         ["Largest move of an impact point", fmt.quantity(u.largest_location_shift, "length", 4),
-         "how far a draw's located impact point moved from the nominal one"],
+         "how far an engine-solved draw's located impact point moved from the nominal one"],
         ["Linear R²", f"{u.linear_r2:.3f}",
          "share of the variance a straight line in the inputs explains"],
     ], numeric=[False, True, False])
+
+
+def _surface_rows(u: PredictedUncertainty, m: str) -> list[list[Any]]:
+    """The checks' rows on how the draws' results were found (none for an older result)."""
+    p = u.propagation
+    if p is None:
+        return []
+    method = {"surrogate": "response surface", "full": "every draw by the engine"}[p.method]
+    rows: list[list[Any]] = [["Propagation", method, p.reason or (
+        f"{p.engine_draws} draws solved by the engine in all"
+        + (f" ({p.design_points} design points, {p.checked_draws} checked draws)"
+           if p.method == "surrogate" else ""))]]
+    if p.largest_difference is not None:
+        rows.append(["Surrogate check", fmt.metric_spread(p.largest_difference, m),
+                     f"largest difference, over {p.checked_draws} draws (the extremes and some "
+                     f"at random), between the response surface and the engine; bound "
+                     f"{fmt.metric_spread(p.bound, m).si}"])
+    return rows
 
 
 def uncertainty_view(result: RunResult) -> dict[str, Any] | None:

@@ -89,10 +89,11 @@ def propagation_sentence(result: RunResult) -> str:
     m = result.metric
     bound = fmt.metric_spread(p.bound, m).si
     if p.method == "surrogate":
-        return (f" Surrogate: a response surface fitted on {p.design_points} engine runs gave "
-                f"the draws; on {p.checked_draws} of them it differs from the engine by at "
-                f"most {_difference(p.largest_difference, m)} (bound {bound}); "
-                f"{p.engine_draws} engine runs.")
+        return (f" The draws' results come from a response surface fitted on "
+                f"{p.design_points} engine runs; the engine's own results for "
+                f"{p.checked_draws} of the draws differ from it by at most "
+                f"{_difference(p.largest_difference, m)} (bound {bound}); {p.engine_draws} "
+                "engine runs in all.")
     if p.requested == "full":
         return f" Every draw solved by the engine ({p.engine_draws} engine runs)."
     return (f" Every draw solved by the engine ({p.engine_draws} engine runs), not the "

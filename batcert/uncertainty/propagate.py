@@ -175,8 +175,8 @@ def _fall_back(solver: _Solver, z: np.ndarray, bound: float, points: int, checke
 def _surface_words(p: Propagation, each: str) -> str:
     return ("a response surface in the inputs' standard uncertainties (a quadratic with the "
             "cubic terms k_j^3 and k_i^2 k_j; every draw's result from it), fitted on "
-            f"{p.design_points} design points and checked on {p.checked_draws} of the draws, "
-            f"each of these {each}")
+            f"{p.design_points} design points and checked on {p.checked_draws} of the draws; "
+            f"the engine's runs: {each}")
 
 
 class _Solver:

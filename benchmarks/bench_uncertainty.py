@@ -7,13 +7,13 @@ the full draws' (the same seed draws the same inputs, so the two agree draw by d
 the tables; asserts nothing.
 
     python benchmarks/bench_uncertainty.py [--draws N] [--repeat R] [--bats B ...]
-        [--methods surrogate,full] [--source DIR] [--json FILE]
+        [--methods surrogate,full] [--before DIR] [--json FILE]
 
 Uses the `batcert` on PATH (the installed package, as CI does), from a scratch directory, with
-BLAS pinned to one thread as bench_commands.py does. ``--source DIR`` times the batcert of a
-source tree instead (``python -m batcert`` with ``PYTHONPATH=DIR``; e.g. ``git archive`` of an
-earlier commit, for a before-and-after table), with ``--methods default`` where that batcert
-has no ``--uncertainty-method``.
+BLAS pinned to one thread as bench_commands.py does. ``--before DIR`` also times, in the same
+rounds, the batcert of a source tree (``python -m batcert`` with ``PYTHONPATH=DIR``, without
+``--uncertainty-method``; e.g. ``git archive`` of an earlier commit, for a before-and-after
+table).
 Targets (issue 42, 2-core machine): about 1 s, at most 10 x the numpy import, with N = 1000.
 """
 
@@ -36,7 +36,7 @@ TARGET_RATIO = 10.0  # x the numpy import
 
 def _command(exe: list[str], bat: str, draws: int, method: str, out: Path) -> list[str]:
     cmd = [*exe, "run", bat, "-p", "ncaa-bbcor", "--uncertainty", str(draws), "--out", str(out)]
-    return cmd if method == "default" else [*cmd, "--uncertainty-method", method]
+    return cmd if method == "before" else [*cmd, "--uncertainty-method", method]
 
 
 def _report(cmd: list[str], cwd: Path, env: dict[str, str]) -> dict:
@@ -74,33 +74,34 @@ def main() -> None:
     parser.add_argument("--draws", type=int, default=1000)
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--bats", nargs="+", default=list(BATS))
-    parser.add_argument("--methods", default="surrogate,full",
-                        help="comma-separated: surrogate, full, default (no option given)")
-    parser.add_argument("--source", type=Path, help="time the batcert of this source tree")
+    parser.add_argument("--methods", default="surrogate,full", help="comma-separated")
+    parser.add_argument("--before", type=Path, help="also time the batcert of this source tree")
     parser.add_argument("--json", type=Path, help="write the figures to this file")
     args = parser.parse_args()
     exe, python = installed_batcert()
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
-    command = [exe]
-    if args.source is not None:
-        env["PYTHONPATH"] = str(args.source.resolve())
-        command = [python, "-m", "batcert"]
-    methods = args.methods.split(",")
+    methods = args.methods.split(",") + (["before"] if args.before else [])
     cases = [(bat, m) for bat in args.bats for m in methods]
     with tempfile.TemporaryDirectory() as tmp:
         cwd = Path(tmp)
         env["BATCERT_CACHE_DIR"] = str(cwd / "cache")
-        reports = {c: _report(_command(command, c[0], args.draws, c[1], cwd / "reports"), cwd, env)
-                   for c in cases}  # also warms the cache
+        before = dict(env, PYTHONPATH=str(args.before.resolve())) if args.before else env
+
+        def run(c, time_it):
+            exe_env = (([python, "-m", "batcert"], before) if c[1] == "before" else ([exe], env))
+            cmd = _command(exe_env[0], c[0], args.draws, c[1], cwd / "reports")
+            return (timed_command(cmd, cwd, exe_env[1]) if time_it
+                    else _report(cmd, cwd, exe_env[1]))
+
+        reports = {c: run(c, False) for c in cases}  # also warms the cache
         times: dict[object, list[float]] = {"numpy": [], **{c: [] for c in cases}}
         for _ in range(args.repeat):  # in turns, so that a drifting machine loads all alike
             times["numpy"].append(timed_command([python, "-c", "import numpy"], cwd, env))
             for c in cases:
-                times[c].append(timed_command(_command(command, c[0], args.draws, c[1],
-                                                       cwd / "reports"), cwd, env))
+                times[c].append(run(c, True))
     base = statistics.median(times["numpy"])
-    print(f"batcert {' '.join(command)}{' (PYTHONPATH ' + str(args.source) + ')' if args.source else ''}"
-          f"; {args.repeat} rounds; `python -c \"import numpy\"` {base:.3f} s")
+    print(f"batcert {exe}" + (f", before: {args.before}" if args.before else "")
+          + f"; {args.repeat} rounds; `python -c \"import numpy\"` {base:.3f} s")
     print(f"| run BAT -p ncaa-bbcor --uncertainty {args.draws} | method | median | minimum | "
           f"x numpy | target x{TARGET_RATIO:g} |")
     print("|---|---|---:|---:|---:|---|")
@@ -119,7 +120,7 @@ def main() -> None:
             "propagation": u.get("propagation")}
     _accuracy(reports, args.bats)
     if args.json:
-        args.json.write_text(json.dumps({"batcert": command, "draws": args.draws,
+        args.json.write_text(json.dumps({"batcert": exe, "draws": args.draws,
                                          "numpy_import_s": base, "figures": figures},
                                         indent=1) + "\n")
         print(f"wrote {args.json}")

@@ -1,5 +1,12 @@
 """Monte Carlo propagation of stated input uncertainties through the engine (JCGM 101).
 
+By default the draws' results come from a response surface in the drawn inputs
+(:mod:`batcert.uncertainty.surrogate`), fitted on a few dozen draws solved by the engine as
+below; every run solves :data:`~batcert.uncertainty.surrogate.SURROGATE_CHECKED` of the actual
+draws (the extremes and some at random) with the engine too, reports the surface's largest
+difference from them, and solves every draw with the engine when it exceeds the bound
+(``method="full"`` always does).
+
 Each draw (:func:`batcert.uncertainty.inputs.draw`) is a bat and a ball file with the drawn
 values, built like any bat (:func:`batcert.model.build.build_bat`: reconciliation to the drawn
 mass properties, calibration to a drawn frequency) and run under the protocol. Two things keep
@@ -14,8 +21,9 @@ a thousand draws within seconds, each checked against the full computation in th
   instead of a search of the whole window.
 
 Every run checks both against the full computation: :data:`CHECKED` draws (the farthest from
-the mean and the first) are run again as ``run`` runs a bat (new modes, the whole search), and
-the largest difference is reported (``full_run_difference``). It includes the full search's own
+the mean and the first) are run again as ``run`` runs a bat (new modes, the whole search; all
+in the same engine batches), and the largest difference from the reported result (the
+surface's, or the stencil's) is reported (``full_run_difference``). It includes the full search's own
 scatter: the model's flat exit-speed maximum is located only to about 0.5 mm, which moves BPF
 at the sweet spot of a hollow bat by up to about 1e-3 (docs/validation.md, section 5).
 
@@ -50,7 +58,6 @@ from batcert.specs.resolve import display_path
 from batcert.uncertainty.inputs import StatedInput, draw, sampled, stated_inputs
 from batcert.uncertainty.surrogate import (
     DEFAULT_BOUND,
-    SURROGATE_CHECKED,
     ResponseSurface,
     axial,
     checked_draws,
@@ -127,23 +134,28 @@ def _by_surface(solver: _Solver, z: np.ndarray, seed: int, bound: float
                 ) -> tuple[np.ndarray, list[Propagation]]:
     """The draws' results by the response surface, and how it was checked; every draw solved
     by the engine when the surface misses the engine by more than ``bound`` on its checked
-    draws, or a design point cannot be built (said in the propagation's reason)."""
-    points = axial(z)
+    draws, or a design point cannot be built (said in the propagation's reason). Two engine
+    batches: the axial points, then the corners with the checked draws (chosen on the axial
+    points' surface, whose extremes are the whole surface's but for the interactions)."""
+    first = axial(z)
     try:
-        fitted = solver.solve(points, _point_names(0, points.shape[0]))
-        pairs = strong_pairs(fitted)
-        more = corners(z, pairs)
-        solver.total -= most_runs(z.shape[1]) - SURROGATE_CHECKED - points.shape[0] - len(more)
-        fitted = np.concatenate([fitted, solver.solve(more, _point_names(points.shape[0],
-                                                                          len(more)))])
+        axial_values = solver.solve(first, _point_names(0, first.shape[0]))
     except InputError as exc:
-        return _fall_back(solver, z, bound, 0, 0, None, "a design point of the response "
-                          "surface cannot be built: " + exc.problems[0].message)
-    points = np.concatenate([points, more])
-    predicted = ResponseSurface.fit(points, fitted, pairs)(z)
-    checked = checked_draws(z, predicted, seed)
-    engine_values = solver.solve(z[checked], _draw_name(checked))
-    difference = np.abs(predicted[checked] - engine_values).max(axis=0)
+        return _fall_back(solver, z, bound, 0, 0, None, _unbuilt(exc))
+    pairs = strong_pairs(axial_values)
+    more = corners(z, pairs)
+    checked = checked_draws(z, ResponseSurface.fit(first, axial_values, [])(z), seed)
+    solver.total = solver.done + len(more) + len(checked)
+    try:
+        second = solver.solve(np.concatenate([more, z[checked]]), _point_names(
+            first.shape[0], len(more)) + _draw_name(checked))
+    except InputError as exc:
+        return _fall_back(solver, z, bound, first.shape[0], 0, None, _unbuilt(exc))
+    points = np.concatenate([first, more])
+    surface = ResponseSurface.fit(points, np.concatenate([axial_values, second[:len(more)]]),
+                                  pairs)
+    predicted = surface(z)
+    difference = np.abs(predicted[checked] - second[len(more):]).max(axis=0)
     if np.all(difference <= bound):
         return predicted, [Propagation("surrogate", "surrogate", solver.done, points.shape[0],
                                        len(checked), float(d), bound) for d in difference]
@@ -152,6 +164,11 @@ def _by_surface(solver: _Solver, z: np.ndarray, seed: int, bound: float
               f"{len(checked)} checked draws{_of(solver, worst)}, more than the bound "
               f"{bound:g}: every draw was solved by the engine")
     return _fall_back(solver, z, bound, points.shape[0], len(checked), difference, reason)
+
+
+def _unbuilt(exc: InputError) -> str:
+    return ("a design point of the response surface (or a checked draw) cannot be built: "
+            + exc.problems[0].message)
 
 
 def _point_names(first: int, count: int) -> list[str]:
@@ -173,8 +190,8 @@ def _fall_back(solver: _Solver, z: np.ndarray, bound: float, points: int, checke
 
 
 def _surface_words(p: Propagation, each: str) -> str:
-    return ("a response surface in the inputs' standard uncertainties (a quadratic with the "
-            "cubic terms k_j^3 and k_i^2 k_j; every draw's result from it), fitted on "
+    return ("a response surface in the inputs' standard uncertainties (a cubic in each, with "
+            "the interactions of the strong ones; every draw's result from it), fitted on "
             f"{p.design_points} design points and checked on {p.checked_draws} of the draws; "
             f"the engine's runs: {each}")
 

@@ -96,8 +96,8 @@ def propagation_sentence(result: RunResult) -> str:
                 "engine runs in all.")
     if p.requested == "full":
         return f" Every draw solved by the engine ({p.engine_draws} engine runs)."
-    return (f" Every draw solved by the engine ({p.engine_draws} engine runs), not the "
-            f"surrogate: {p.reason}.")
+    return (f" Every draw solved by the engine ({p.engine_draws} engine runs), not by the "
+            f"response surface: {p.reason}.")
 
 
 def checks_table(result: RunResult) -> Table:

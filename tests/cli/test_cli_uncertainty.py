@@ -203,3 +203,16 @@ def test_the_report_states_the_surface_and_its_check(surface_runs):
     terminal = " ".join(surface.stdout.split())  # the terminal's sentence says it too
     assert (f"fitted on {p['design_points']} engine runs; the engine's own results for 8 of "
             "the draws differ from it by at most") in terminal
+
+
+def test_a_surface_beyond_its_bound_is_replaced_by_every_draw_and_the_terminal_says_so():
+    # 1e-12 is below what the surface misses by on the flexible engine (its scatter from draw
+    # to draw alone is about 1e-6): every draw is solved, and the terminal's sentence says why
+    result = invoke("run", "ash-34", "-p", "ncaa-bbcor", "--uncertainty", SURFACE_N,
+                    "--uncertainty-bound", "1e-12", "--no-reports")
+    assert result.exit_code in (0, 1)
+    text = " ".join(result.stdout.split())
+    assert "Every draw solved by the engine (" in text
+    assert ("engine runs), not by the response surface: the response surface missed the engine "
+            "by ") in text
+    assert "on 8 checked draws, more than the bound 1e-12." in text

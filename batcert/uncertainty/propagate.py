@@ -61,9 +61,9 @@ from batcert.uncertainty.surrogate import (
     ResponseSurface,
     axial,
     checked_draws,
-    corners,
     most_runs,
-    strong_pairs,
+    second_stage,
+    strong_inputs,
 )
 
 BASIS_MODES = 48  # nominal bending modes spanning a drawn bat's modes (Ritz basis)
@@ -135,16 +135,18 @@ def _by_surface(solver: _Solver, z: np.ndarray, seed: int, bound: float
     """The draws' results by the response surface, and how it was checked; every draw solved
     by the engine when the surface misses the engine by more than ``bound`` on its checked
     draws, or a design point cannot be built (said in the propagation's reason). Two engine
-    batches: the axial points, then the corners with the checked draws (chosen on the axial
-    points' surface, whose extremes are the whole surface's but for the interactions)."""
+    batches: the axial points, then the second stage with the checked draws (chosen on the
+    axial points' quadratic, whose extremes are the whole surface's but for the cubic terms
+    and the interactions)."""
     first = axial(z)
     try:
         axial_values = solver.solve(first, _point_names(0, first.shape[0]))
     except InputError as exc:
         return _fall_back(solver, z, bound, 0, 0, None, _unbuilt(exc))
-    pairs = strong_pairs(axial_values)
-    more = corners(z, pairs)
-    checked = checked_draws(z, ResponseSurface.fit(first, axial_values, [])(z), seed)
+    strong = strong_inputs(axial_values)
+    more = second_stage(z, strong)
+    checked = checked_draws(z, ResponseSurface.fit(first, axial_values, [False] * z.shape[1])(z),
+                            seed)
     solver.total = solver.done + len(more) + len(checked)
     try:
         second = solver.solve(np.concatenate([more, z[checked]]), _point_names(
@@ -153,7 +155,7 @@ def _by_surface(solver: _Solver, z: np.ndarray, seed: int, bound: float
         return _fall_back(solver, z, bound, first.shape[0], 0, None, _unbuilt(exc))
     points = np.concatenate([first, more])
     surface = ResponseSurface.fit(points, np.concatenate([axial_values, second[:len(more)]]),
-                                  pairs)
+                                  strong)
     predicted = surface(z)
     difference = np.abs(predicted[checked] - second[len(more):]).max(axis=0)
     if np.all(difference <= bound):
@@ -190,8 +192,9 @@ def _fall_back(solver: _Solver, z: np.ndarray, bound: float, points: int, checke
 
 
 def _surface_words(p: Propagation, each: str) -> str:
-    return ("a response surface in the inputs' standard uncertainties (a cubic in each, with "
-            "the interactions of the strong ones; every draw's result from it), fitted on "
+    return ("a response surface in the inputs' standard uncertainties (quadratic in each, "
+            "cubic in the strong ones, with their interactions; every draw's result from it), "
+            "fitted on "
             f"{p.design_points} design points and checked on {p.checked_draws} of the draws; "
             f"the engine's runs: {each}")
 

@@ -6,20 +6,22 @@ Each stated input is one independent source, drawn as ``k`` of its standard unce
 ``k``: the metric at the impact point the protocol's rule locates (the vertex of a parabola, the
 centre of percussion or a fixed point, :mod:`batcert.runner.sampled`), of a bat and ball whose
 properties move smoothly with the inputs. Over the few standard uncertainties the draws span, a
-cubic in each ``k`` with the interactions of the inputs that matter (Box and Wilson 1951;
+polynomial in the ``k``, cubic in the strong ones, with their interactions (Box and Wilson 1951;
 Myers, Montgomery and Anderson-Cook, *Response Surface Methodology*, ch. 7) follows it to far
 less than its spread, so a thousand draws need only the few dozen engine runs of the surface's
 design, in two stages:
 
-1. :func:`axial`: the centre and each input alone at ``+/- a_j`` and ``+/- a_j / 2``, where
-   ``a_j`` is its largest drawn ``|k|`` (about 3.3 for a normal input in 1000 draws, sqrt 3
-   for a uniform one): each input's own cubic, with a point to spare, and its effect.
-2. :func:`corners`: for each pair of inputs of which at least one is strong (its effect at
-   least :data:`STRONG` of the strongest one's), the four corners ``(+/- a_i, +/- a_j)``:
-   their interaction ``k_i k_j``, ``k_i^2 k_j`` and ``k_i k_j^2``, with a point to spare.
-   An interaction is of the order of the weaker effect times the relative change the stronger
-   input makes to it; between two inputs that both change the result little it is left out
-   (the "weak heredity" of Hamada and Wu 1992: interactions come with strong main effects).
+1. :func:`axial`: the centre and each input alone at ``+/- a_j``, where ``a_j`` is its largest
+   drawn ``|k|`` (about 3.3 for a normal input in 1000 draws, sqrt 3 for a uniform one): each
+   input's slope and curvature, and its effect. An input is strong when its effect is at least
+   :data:`STRONG` of the strongest one's.
+2. :func:`second_stage`: each strong input alone at ``+/- a_j / 2`` (its cubic term, with a
+   point to spare), and for each pair of inputs of which at least one is strong the four
+   corners ``(+/- a_i, +/- a_j)``: their interaction ``k_i k_j``, ``k_i^2 k_j`` and
+   ``k_i k_j^2``, with a point to spare. An interaction is of the order of the weaker effect
+   times the relative change the stronger input makes to it; between two inputs that both
+   change the result little it is left out, as is a weak input's cubic term (the "weak
+   heredity" of Hamada and Wu 1992: interactions come with strong main effects).
 
 Why these terms: the ball's COR dominates every shipped bat's spread under BBCOR; a lot's
 liveliness moves BBCOR by about a twentieth over its band, not quite in a straight line, and
@@ -28,9 +30,10 @@ aluminium-34 and ash-34 under ncaa-bbcor (least squares through all of them, sol
 engine), a quadratic in the ``k`` misses some by 1.4e-4 and 2.1e-4, with the ``k_j^3`` terms
 2.6e-5 and 3.0e-5, with all ``k_i^2 k_j`` terms 7e-6 and 3e-6, the full cubic 5e-6 and 3e-6:
 about the engine's own scatter from draw to draw (1e-6 to 2e-6 along one input). The surface
-fitted on this design (37 points for their five inputs; the COR is the one strong input)
-misses the engine's results of all 1000 draws by at most 1.7e-5 and 5.2e-6 (all ten pairs'
-corners, 61 points: 1.6e-5 and 3.5e-6; three corners a pair: 1.7e-5 and 7.7e-6).
+fitted on this design (29 points for their five inputs; the COR is the one strong input)
+misses the engine's results of all 1000 draws by at most 1.7e-5 and 5.4e-6 (with every
+input's cubic, 37 points: 1.7e-5 and 5.2e-6; with all ten pairs' corners too, 61 points:
+1.6e-5 and 3.5e-6; with three corners a pair: 1.7e-5 and 7.7e-6).
 
 Whether it does, for this bat, these files and this protocol, is not assumed: the Monte Carlo
 (:mod:`batcert.uncertainty.propagate`) solves a sample of the actual draws with the engine,
@@ -57,88 +60,90 @@ DEFAULT_BOUND = 1e-4
 # an input is strong when its effect (the largest change of a result along its axis) is at
 # least this share of the strongest input's; pairs with a strong input get corner points
 STRONG = 0.1
-LEVELS = (-1.0, -0.5, 0.5, 1.0)  # axial points, in shares of a_j
 CORNERS = ((1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0))
+
+
+def _point(d: int, at: dict[int, float]) -> np.ndarray:
+    p = np.zeros(d)
+    for j, v in at.items():
+        p[j] = v
+    return p
 
 
 def axial(z: np.ndarray) -> np.ndarray:
     """The design's first stage for the draws ``z`` (samples, inputs), in standard
-    uncertainties, shape (1 + 4 inputs, inputs): the centre, then each input alone at
-    :data:`LEVELS` times its largest drawn ``|k|``. Every point lies within the draws' own range
-    of each input, so it reaches no value of an input the draws do not."""
-    a = np.abs(z).max(axis=0)
-    points = [np.zeros(z.shape[1])]
-    for j in range(z.shape[1]):
-        for level in LEVELS:
-            p = np.zeros(z.shape[1])
-            p[j] = level * a[j]
-            points.append(p)
-    return np.array(points)
+    uncertainties, shape (1 + 2 inputs, inputs): the centre, then each input alone at ``-a_j``
+    and ``+a_j``, its largest drawn ``|k|``. Every point of the design lies within the draws'
+    own range of each input, so it reaches no value of an input the draws do not."""
+    a, d = np.abs(z).max(axis=0), z.shape[1]
+    return np.array([np.zeros(d)] + [_point(d, {j: s * a[j]}) for j in range(d)
+                                     for s in (-1.0, 1.0)])
 
 
-def strong_pairs(values: np.ndarray) -> list[tuple[int, int]]:
-    """The pairs of inputs that get corner points, from the results ``values`` (points,
-    results) at the :func:`axial` points: those with at least one strong input (:data:`STRONG`)
-    under any result."""
-    d = (values.shape[0] - 1) // len(LEVELS)
-    along = values[1:].reshape(d, len(LEVELS), -1)
-    effect = np.abs(along - values[0]).max(axis=1)  # (inputs, results)
+def strong_inputs(values: np.ndarray) -> list[bool]:
+    """Which inputs are strong (:data:`STRONG`) under any result, from the results ``values``
+    (points, results) at the :func:`axial` points."""
+    d = (values.shape[0] - 1) // 2
+    effect = np.abs(values[1:].reshape(d, 2, -1) - values[0]).max(axis=1)  # (inputs, results)
     top = effect.max(axis=0)
-    strong = np.any(effect >= STRONG * np.where(top > 0, top, np.inf), axis=1)
-    return [(i, j) for i, j in combinations(range(d), 2) if strong[i] or strong[j]]
+    return [bool(s) for s in np.any(effect >= STRONG * np.where(top > 0, top, np.inf), axis=1)]
 
 
-def corners(z: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
-    """The design's second stage: for each pair ``(i, j)``, the four points ``(+/- a_i, +/-
-    a_j)`` (the others at 0), shape (4 pairs, inputs)."""
-    a = np.abs(z).max(axis=0)
-    points = []
-    for i, j in pairs:
-        for si, sj in CORNERS:
-            p = np.zeros(z.shape[1])
-            p[i], p[j] = si * a[i], sj * a[j]
-            points.append(p)
-    return np.array(points).reshape(-1, z.shape[1])
+def strong_pairs(strong: list[bool]) -> list[tuple[int, int]]:
+    """The pairs of inputs with at least one strong input: they get corner points and terms."""
+    return [(i, j) for i, j in combinations(range(len(strong)), 2) if strong[i] or strong[j]]
+
+
+def second_stage(z: np.ndarray, strong: list[bool]) -> np.ndarray:
+    """The design's second stage: each strong input alone at ``+/- a_j / 2`` (its cubic term,
+    with one point to spare), and for each pair of :func:`strong_pairs` the four points ``(+/-
+    a_i, +/- a_j)`` (the others at 0), shape (points, inputs)."""
+    a, d = np.abs(z).max(axis=0), z.shape[1]
+    points = [_point(d, {j: s * 0.5 * a[j]}) for j in range(d) if strong[j] for s in (-1.0, 1.0)]
+    points += [_point(d, {i: si * a[i], j: sj * a[j]}) for i, j in strong_pairs(strong)
+               for si, sj in CORNERS]
+    return np.array(points).reshape(-1, d)
 
 
 def most_runs(inputs: int) -> int:
-    """The most engine runs a surface for ``inputs`` inputs takes (every pair strong): its
+    """The most engine runs a surface for ``inputs`` inputs takes (every input strong): its
     design and its check."""
-    return 1 + len(LEVELS) * inputs + len(CORNERS) * inputs * (inputs - 1) // 2 + SURROGATE_CHECKED
+    return (1 + 4 * inputs + len(CORNERS) * inputs * (inputs - 1) // 2 + SURROGATE_CHECKED)
 
 
-def _terms(u: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
-    """The surface's terms of the scaled points ``u`` (rows): 1, each u_j, u_j^2 and u_j^3,
-    and for each pair u_i u_j, u_i^2 u_j and u_i u_j^2."""
-    cols = [np.ones(u.shape[0])] + [u[:, j] ** n for j in range(u.shape[1]) for n in (1, 2, 3)]
-    for i, j in pairs:
+def _terms(u: np.ndarray, strong: list[bool]) -> np.ndarray:
+    """The surface's terms of the scaled points ``u`` (rows): 1, each u_j and u_j^2, each strong
+    input's u_j^3, and for each pair of :func:`strong_pairs` u_i u_j, u_i^2 u_j and u_i u_j^2."""
+    d = u.shape[1]
+    cols = [np.ones(u.shape[0])] + [u[:, j] ** n for j in range(d) for n in (1, 2)]
+    cols += [u[:, j] ** 3 for j in range(d) if strong[j]]
+    for i, j in strong_pairs(strong):
         cols += [u[:, i] * u[:, j], u[:, i] ** 2 * u[:, j], u[:, i] * u[:, j] ** 2]
     return np.column_stack(cols)
 
 
 @dataclass(frozen=True)
 class ResponseSurface:
-    """A cubic in each input's ``k`` with the interactions of ``pairs``, one per column of
-    results (one per protocol)."""
+    """A quadratic in each input's ``k``, cubic in a strong one's, with the interactions of the
+    pairs with a strong input; one per column of results (one per protocol)."""
 
     scale: np.ndarray  # each input's a_j: the terms are in k_j / a_j [-]
-    pairs: list[tuple[int, int]]
+    strong: list[bool]  # each input's
     coefficients: np.ndarray  # (terms, results)
 
     @classmethod
-    def fit(cls, points: np.ndarray, values: np.ndarray,
-            pairs: list[tuple[int, int]]) -> ResponseSurface:
+    def fit(cls, points: np.ndarray, values: np.ndarray, strong: list[bool]) -> ResponseSurface:
         """The least-squares surface through ``values`` (shape (points, results)) at
-        ``points`` (:func:`axial` and :func:`corners`), in inputs scaled to [-1, 1]
-        (conditioning)."""
+        ``points`` (:func:`axial` and :func:`second_stage`), in inputs scaled to [-1, 1]
+        (conditioning). With no input ``strong``, the quadratic through the axial points."""
         scale = np.abs(points).max(axis=0)
         scale[scale == 0] = 1.0
-        coefficients, *_ = np.linalg.lstsq(_terms(points / scale, pairs), values, rcond=None)
-        return cls(scale, pairs, coefficients)
+        coefficients, *_ = np.linalg.lstsq(_terms(points / scale, strong), values, rcond=None)
+        return cls(scale, strong, coefficients)
 
     def __call__(self, z: np.ndarray) -> np.ndarray:
         """The surface at the draws ``z`` (samples, inputs): shape (samples, results)."""
-        return _terms(z / self.scale, self.pairs) @ self.coefficients
+        return _terms(z / self.scale, self.strong) @ self.coefficients
 
 
 def checked_draws(z: np.ndarray, predicted: np.ndarray, seed: int,

@@ -131,6 +131,9 @@ def test_run_with_uncertainty_is_the_command_lines(batcert_cli):
     cli = batcert_cli("run", "ash-34", "-p", "ncaa-bbcor", "--uncertainty", "100", "--seed",
                       "5", "--uncertainty-bound", "2e-4", "--json")
     assert json.loads(cli.stdout)["results"][0]["uncertainty"]["values"] == u.values
+    # the result reads back from its document, the propagation's record with it
+    from batcert.results.run import RunResult
+    assert RunResult.from_dict(result.to_dict()).uncertainty.propagation == u.propagation
 
 
 def test_the_command_line_refuses_what_the_library_refuses(batcert_cli):

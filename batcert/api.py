@@ -173,14 +173,40 @@ def _engine(engine) -> str:
 
 
 def run(bat: str | Path | LoadedBat, protocol: str | Path | ProtocolInputs,
-        engine: str = "flexible") -> RunResult:
+        engine: str = "flexible", *, uncertainty: int | None = None, seed: int | None = None,
+        uncertainty_method: str | None = None,
+        uncertainty_bound: float | None = None) -> RunResult:
     """The model's prediction for ``bat`` under ``protocol``: the metric at the impact point the
-    protocol's rule locates, its verdict against the limit, every condition's details."""
+    protocol's rule locates, its verdict against the limit, every condition's details.
+    ``uncertainty=N``: also the result's distribution over N Monte Carlo draws of the
+    uncertainties the bat and ball files state (``.uncertainty``; docs/uncertainty.md), with
+    ``seed`` (default 20011), ``uncertainty_method`` (``"surrogate"``, the default: a response
+    surface checked against the engine on a sample of the draws; ``"full"``: every draw solved
+    by the engine) and ``uncertainty_bound`` (the surface's largest allowed difference on the
+    checked draws, in the metric's unit; default 1e-4), as ``run --uncertainty N`` takes
+    them."""
+    from batcert.commands.run import check_uncertainty, with_uncertainty
     from batcert.commands.run import run as run_protocols
     _ready()
     engine = _engine(engine)
-    [result] = run_protocols(_bat(bat), [_protocol(protocol)], engine)
-    return result
+    options = {"seed": seed, "uncertainty_method": uncertainty_method,
+               "uncertainty_bound": uncertainty_bound}
+    for name, value in options.items():
+        if value is not None and uncertainty is None:
+            raise args.ArgumentError(name, "needs uncertainty=N (the Monte Carlo's draws)")
+    loaded, protocols = _bat(bat), [_protocol(protocol)]
+    if uncertainty is None:
+        return run_protocols(loaded, protocols, engine)[0]
+    samples = args.whole("uncertainty", uncertainty)
+    seed = None if seed is None else args.whole("seed", seed)
+    method = args.choice("uncertainty_method", "surrogate" if uncertainty_method is None
+                         else uncertainty_method, args.UNCERTAINTY_METHODS)
+    bound = (None if uncertainty_bound is None
+             else args.positive("uncertainty_bound", uncertainty_bound))
+    check_uncertainty(loaded, protocols, samples, seed)
+    results = run_protocols(loaded, protocols, engine)
+    return with_uncertainty(loaded, protocols, results, samples, seed, engine, method=method,
+                            bound=bound)[0]
 
 
 def compare(bats: Sequence[str | Path | LoadedBat], protocols: Sequence[str | Path] = (),

@@ -18,8 +18,9 @@ from typing import Any
 
 from batcert.errors import UsageProblem
 
-__all__ = ["ArgumentError", "BOUNDS", "choice", "elevation", "launch_angle", "name_or_path",
-           "names_or_paths", "pitch_speed", "spin", "temperature", "whole", "workers"]
+__all__ = ["ArgumentError", "BOUNDS", "UNCERTAINTY_METHODS", "choice", "elevation",
+           "launch_angle", "name_or_path", "names_or_paths", "pitch_speed", "positive", "spin",
+           "temperature", "whole", "workers"]
 
 
 # The ranges the commands accept (SI; angles in degrees, spins in rpm, temperatures in C):
@@ -33,7 +34,12 @@ BOUNDS = {
     "temperature": (-43.0, 57.0),  # C (the coldest and hottest air a game was played in, rounded out)
     "workers": (1, 256),
     "points": (3, 1001),  # of a design's margin curve
+    "uncertainty": (2, 1_000_000),  # Monte Carlo draws of run --uncertainty
+    "seed": (0, 2**63 - 1),  # their random seed
 }
+# how run --uncertainty finds the draws' results (docs/uncertainty.md): a response surface
+# checked on a sample of the draws, or every draw solved by the engine
+UNCERTAINTY_METHODS = ("surrogate", "full")
 
 _TEMPERATURE = {"f": lambda t: (t - 32) * 5 / 9 + 273.15, "c": lambda t: t + 273.15,
                 "k": lambda t: t}
@@ -132,6 +138,14 @@ def whole(name: str, value: Any) -> int:
     if not lo <= int(value) <= hi:
         raise ArgumentError(name, f"{value} is outside {lo} to {hi}")
     return int(value)
+
+
+def positive(name: str, value: Any) -> float:
+    """A finite number above 0 (the surrogate's bound, in the metric's unit)."""
+    v = _number(name, value)
+    if not v > 0:
+        raise ArgumentError(name, f"must be above 0, got {value!r}")
+    return v
 
 
 def workers(value: Any) -> int:

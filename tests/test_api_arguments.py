@@ -61,6 +61,28 @@ REFUSED = [
     ("decision_rule", lambda: batcert.reduce(SESSION, "ncaa-bbcor", decision_rule="strict",
                                              engine="rigid")),
     ("session", lambda: batcert.reduce(None, "ncaa-bbcor", engine="rigid")),
+    # run's Monte Carlo (run --uncertainty N --seed S --uncertainty-method M
+    # --uncertainty-bound X), refused before anything runs
+    ("uncertainty", lambda: batcert.run("ash-34", "ncaa-bbcor", engine="rigid", uncertainty=1)),
+    ("uncertainty", lambda: batcert.run("ash-34", "ncaa-bbcor", engine="rigid",
+                                        uncertainty=100.0)),
+    ("uncertainty", lambda: batcert.run("ash-34", "ncaa-bbcor", engine="rigid",
+                                        uncertainty=True)),
+    ("seed", lambda: batcert.run("ash-34", "ncaa-bbcor", engine="rigid", uncertainty=10,
+                                 seed=-1)),
+    ("seed", lambda: batcert.run("ash-34", "ncaa-bbcor", engine="rigid", seed=7)),
+    ("uncertainty_method", lambda: batcert.run("ash-34", "ncaa-bbcor", engine="rigid",
+                                               uncertainty=10, uncertainty_method="fast")),
+    ("uncertainty_method", lambda: batcert.run("ash-34", "ncaa-bbcor", engine="rigid",
+                                               uncertainty_method="full")),
+    ("uncertainty_bound", lambda: batcert.run("ash-34", "ncaa-bbcor", engine="rigid",
+                                              uncertainty=10, uncertainty_bound=0)),
+    ("uncertainty_bound", lambda: batcert.run("ash-34", "ncaa-bbcor", engine="rigid",
+                                              uncertainty=10, uncertainty_bound=math.nan)),
+    ("uncertainty_bound", lambda: batcert.run("ash-34", "ncaa-bbcor", engine="rigid",
+                                              uncertainty=10, uncertainty_bound="1e-4")),
+    ("uncertainty_bound", lambda: batcert.run("ash-34", "ncaa-bbcor", engine="rigid",
+                                              uncertainty_bound=1e-3)),
 ]
 
 
@@ -96,6 +118,22 @@ def test_loaded_bats_and_quantities_with_units_are_taken():
     b = batcert.field("ash-34", pitch_speed=85 * 0.44704, temperature=57 + 273.15,
                       elevation=5280 * 0.3048, engine="rigid")
     assert a.to_dict()["batters"] == b.to_dict()["batters"]
+
+
+def test_run_with_uncertainty_is_the_command_lines(batcert_cli):
+    # the library's Monte Carlo is the command line's: the same draws, the same results
+    import json
+    result = batcert.run("ash-34", "ncaa-bbcor", uncertainty=100, seed=5,
+                         uncertainty_bound=2e-4)
+    u = result.uncertainty
+    assert (u.samples, u.seed, u.propagation.method, u.propagation.bound) == (
+        100, 5, "surrogate", 2e-4)
+    cli = batcert_cli("run", "ash-34", "-p", "ncaa-bbcor", "--uncertainty", "100", "--seed",
+                      "5", "--uncertainty-bound", "2e-4", "--json")
+    assert json.loads(cli.stdout)["results"][0]["uncertainty"]["values"] == u.values
+    # the result reads back from its document, the propagation's record with it
+    from batcert.results.run import RunResult
+    assert RunResult.from_dict(result.to_dict()).uncertainty.propagation == u.propagation
 
 
 def test_the_command_line_refuses_what_the_library_refuses(batcert_cli):

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import click
 
+from batcert import arguments as args
 from batcert import console
 from batcert.cli.base import (
     EXIT_CODES,
@@ -25,6 +26,24 @@ from batcert.cli.base import (
     main,
 )
 from batcert.console import views
+
+
+def _read_bound(ctx, param, value):
+    """--uncertainty-bound as the library reads it (:func:`batcert.arguments.positive`)."""
+    if value is None:
+        return None
+    try:
+        return args.positive("uncertainty_bound", _float(value))
+    except args.ArgumentError as exc:
+        raise click.BadParameter(exc.reason) from None
+
+
+def _float(text: str):
+    try:
+        return float(text)
+    except ValueError:
+        return text  # refused by the reader as not a number
+
 
 
 @main.command(epilog=EXIT_CODES + """
@@ -48,11 +67,22 @@ Examples:
 @click.option("--seed", type=click.IntRange(0, 2**63 - 1), default=None,
               help="Random seed of the --uncertainty draws [default: 20011; the same seed "
                    "gives the same draws].")
+@click.option("--uncertainty-method", "method", type=click.Choice(args.UNCERTAINTY_METHODS),
+              default=None, help="How the --uncertainty draws' results are found: 'surrogate', "
+              "a response surface in the drawn inputs fitted on a few dozen engine runs and "
+              "checked against the engine on 8 of the draws (every draw is solved when it "
+              "misses there by more than --uncertainty-bound, and the report says so), or "
+              "'full', every draw solved by the engine [default: surrogate].")
+@click.option("--uncertainty-bound", "bound", default=None, metavar="X",
+              callback=_read_bound,
+              help="The largest difference between the surrogate and the engine on the checked "
+                   "draws, in the metric's unit, beyond which every draw is solved [default: "
+                   "1e-4].")
 @_output_options("results")
 @FIGURES_OPTION
 @_guard
-def run(bats, protocols, samples, seed, engine, out_dir, formats, no_reports, as_json,
-        figures_dir):
+def run(bats, protocols, samples, seed, method, bound, engine, out_dir, formats, no_reports,
+        as_json, figures_dir):
     """Run each BAT (a bat YAML path or shipped bat name; several for a batch) under one or
     more protocols, print the predicted verdicts and write Markdown, HTML and JSON reports
     (one set per bat and protocol)."""
@@ -67,13 +97,7 @@ def run(bats, protocols, samples, seed, engine, out_dir, formats, no_reports, as
     clock.lap("inputs")
     target = _report_dir(out_dir, no_reports, as_json)
     _check_figures_dir(figures_dir)
-    if seed is not None and samples is None:
-        from batcert.errors import UsageProblem
-        raise UsageProblem("--seed needs --uncertainty N")
-    if samples is not None:
-        from batcert.commands.run import check_uncertainty
-        for loaded in batch:
-            check_uncertainty(loaded, inputs, samples, seed)
+    _check_monte_carlo(batch, inputs, samples, seed, method, bound)
     results = []
     for i, loaded in enumerate(batch):
         what = "running" if len(batch) == 1 else f"bat {i + 1} of {len(batch)}"
@@ -84,7 +108,8 @@ def run(bats, protocols, samples, seed, engine, out_dir, formats, no_reports, as
             from batcert.commands.run import with_uncertainty
             with console.progress("Monte Carlo") as bar:
                 ran = with_uncertainty(loaded, inputs, ran, samples, seed, engine,
-                                       on_progress=_counter(bar, "draws"))
+                                       on_progress=_counter(bar, "engine draws"),
+                                       method=method or "surrogate", bound=bound)
             clock.lap("uncertainty")
         results += ran
     console.log(f"engine {engine}: " + "; ".join(f"{k} {v}" for k, v in
@@ -112,6 +137,21 @@ def run(bats, protocols, samples, seed, engine, out_dir, formats, no_reports, as
     clock.lap("reports")
     clock.report()
     sys.exit(max(r.return_code() for r in results))
+
+
+def _check_monte_carlo(batch: list, inputs: list, samples: int | None, seed: int | None,
+                       method: str | None, bound: float | None) -> None:
+    """Before anything runs: the Monte Carlo's options need --uncertainty N, and each bat's
+    files state uncertainties whose draws are possible."""
+    for given, name in ((seed, "--seed"), (method, "--uncertainty-method"),
+                        (bound, "--uncertainty-bound")):
+        if given is not None and samples is None:
+            from batcert.errors import UsageProblem
+            raise UsageProblem(f"{name} needs --uncertainty N")
+    if samples is not None:
+        from batcert.commands.run import check_uncertainty
+        for loaded in batch:
+            check_uncertainty(loaded, inputs, samples, seed)
 
 
 def _load_batch(bats: tuple[str, ...]) -> list:

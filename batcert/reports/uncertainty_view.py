@@ -71,7 +71,33 @@ def summary_sentence(result: RunResult) -> str:
     if u.pass_probability is not None:
         text += (f" Probability of passing: {u.pass_probability:.3f} (Monte Carlo standard "
                  f"error {u.pass_probability_standard_error:.3f}).")
-    return text
+    return text + propagation_sentence(result)
+
+
+def _difference(value: float | None, metric: str) -> str:
+    return "none" if value is None else fmt.metric_spread(value, metric).si
+
+
+def propagation_sentence(result: RunResult) -> str:
+    """How the draws' results were found: the response surface and its check against the
+    engine, or every draw by the engine (and why, when the surface was asked for)."""
+    u = result.uncertainty
+    assert u is not None
+    p = u.propagation
+    if p is None:
+        return ""
+    m = result.metric
+    bound = fmt.metric_spread(p.bound, m).si
+    if p.method == "surrogate":
+        return (f" The draws' results come from a response surface fitted on "
+                f"{p.design_points} engine runs; the engine's own results for "
+                f"{p.checked_draws} of the draws differ from it by at most "
+                f"{_difference(p.largest_difference, m)} (bound {bound}); {p.engine_draws} "
+                "engine runs in all.")
+    if p.requested == "full":
+        return f" Every draw solved by the engine ({p.engine_draws} engine runs)."
+    return (f" Every draw solved by the engine ({p.engine_draws} engine runs), not by the "
+            f"response surface: {p.reason}.")
 
 
 def checks_table(result: RunResult) -> Table:
@@ -84,11 +110,30 @@ def checks_table(result: RunResult) -> Table:
         ["Full-run check", fmt.metric_spread(u.full_run_difference, m),
          f"largest difference, over {u.checked_draws} draws, between the Monte Carlo's result "
          "and a full run of the drawn bat (new modes, the whole search)"],
+        *_surface_rows(u, m),
         ["Largest move of an impact point", fmt.quantity(u.largest_location_shift, "length", 4),
-         "how far a draw's located impact point moved from the nominal one"],
+         "how far an engine-solved draw's located impact point moved from the nominal one"],
         ["Linear R²", f"{u.linear_r2:.3f}",
          "share of the variance a straight line in the inputs explains"],
     ], numeric=[False, True, False])
+
+
+def _surface_rows(u: PredictedUncertainty, m: str) -> list[list[Any]]:
+    """The checks' rows on how the draws' results were found (none for an older result)."""
+    p = u.propagation
+    if p is None:
+        return []
+    method = {"surrogate": "response surface", "full": "every draw by the engine"}[p.method]
+    rows: list[list[Any]] = [["Propagation", method, p.reason or (
+        f"{p.engine_draws} draws solved by the engine in all"
+        + (f" ({p.design_points} design points, {p.checked_draws} checked draws)"
+           if p.method == "surrogate" else ""))]]
+    if p.largest_difference is not None:
+        rows.append(["Surrogate check", fmt.metric_spread(p.largest_difference, m),
+                     f"largest difference, over {p.checked_draws} draws (the extremes and some "
+                     f"at random), between the response surface and the engine; bound "
+                     f"{fmt.metric_spread(p.bound, m).si}"])
+    return rows
 
 
 def uncertainty_view(result: RunResult) -> dict[str, Any] | None:

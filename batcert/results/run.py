@@ -157,6 +157,24 @@ class InputUncertainty:
 
 
 @dataclass
+class Propagation:
+    """How the draws' results were found: every draw solved by the engine (``full``), or a
+    response surface in the drawn inputs fitted on engine runs and checked on a sample of the
+    draws against the engine (``surrogate``; docs/uncertainty.md)."""
+
+    method: str  # "surrogate" | "full": what gave the reported draws' results
+    requested: str  # the method asked for (--uncertainty-method)
+    engine_draws: int  # draws (and design points) the engine solved, in all [-]
+    design_points: int  # engine-solved points the surface was fitted on (0 without one) [-]
+    checked_draws: int  # actual draws the engine solved to check the surface (0 without) [-]
+    largest_difference: float | None  # the largest |surface - engine| over those draws
+    # [metric unit]; None when no surface was fitted
+    bound: float  # the largest difference the surface may make before every draw is solved
+    # by the engine [metric unit]
+    reason: str = ""  # why every draw was solved when the surface was asked for
+
+
+@dataclass
 class PredictedUncertainty:
     """The result's distribution over the stated input uncertainties (``run --uncertainty``):
     Monte Carlo through the engine (JCGM 101), with the probability of passing."""
@@ -178,13 +196,14 @@ class PredictedUncertainty:
     pass_probability_standard_error: float | None  # sqrt(p (1 - p) / samples)
     nominal_value: float  # the run's result [metric unit]
     full_run_difference: float  # the largest difference, over the checked draws, between a
-    # draw's result as the Monte Carlo finds it (Ritz modes, a stencil around the nominal
-    # impact points) and as a full run of the drawn bat finds it [metric unit]
+    # draw's result as the Monte Carlo reports it (the surface's, or Ritz modes and a stencil
+    # around the nominal impact points) and as a full run of the drawn bat finds it [metric unit]
     checked_draws: int  # draws checked so (the farthest from the mean and the first) [-]
-    largest_location_shift: float  # the largest move of a draw's impact point from the
-    # nominal one [m]
+    largest_location_shift: float  # the largest move of an engine-solved draw's impact point
+    # from the nominal one (with a surface: of its design points and checked draws) [m]
     values: list[float]  # the result of every draw, in draw order
     note: str = ""  # what the distribution does not include (e.g. the barrel's range)
+    propagation: Propagation | None = None  # surface or full draws, and the surface's check
 
 
 @dataclass

@@ -1,5 +1,12 @@
 """Monte Carlo propagation of stated input uncertainties through the engine (JCGM 101).
 
+By default the draws' results come from a response surface in the drawn inputs
+(:mod:`batcert.uncertainty.surrogate`), fitted on a few dozen draws solved by the engine as
+below; every run solves :data:`~batcert.uncertainty.surrogate.SURROGATE_CHECKED` of the actual
+draws (the extremes and some at random) with the engine too, reports the surface's largest
+difference from them, and solves every draw with the engine when it exceeds the bound
+(``method="full"`` always does).
+
 Each draw (:func:`batcert.uncertainty.inputs.draw`) is a bat and a ball file with the drawn
 values, built like any bat (:func:`batcert.model.build.build_bat`: reconciliation to the drawn
 mass properties, calibration to a drawn frequency) and run under the protocol. Two things keep
@@ -14,8 +21,9 @@ a thousand draws within seconds, each checked against the full computation in th
   instead of a search of the whole window.
 
 Every run checks both against the full computation: :data:`CHECKED` draws (the farthest from
-the mean and the first) are run again as ``run`` runs a bat (new modes, the whole search), and
-the largest difference is reported (``full_run_difference``). It includes the full search's own
+the mean and the first) are run again as ``run`` runs a bat (new modes, the whole search; all
+in the same engine batches), and the largest difference from the reported result (the
+surface's, or the stencil's) is reported (``full_run_difference``). It includes the full search's own
 scatter: the model's flat exit-speed maximum is located only to about 0.5 mm, which moves BPF
 at the sweet spot of a hollow bat by up to about 1e-3 (docs/validation.md, section 5).
 
@@ -39,7 +47,7 @@ import numpy as np
 from batcert.engines.base import Engine
 from batcert.errors import InputError, UsageProblem
 from batcert.model.build import BuiltBat, build_bat
-from batcert.results.run import InputUncertainty, PredictedUncertainty, RunResult
+from batcert.results.run import InputUncertainty, PredictedUncertainty, Propagation, RunResult
 from batcert.runner.bench import Bench, drive
 from batcert.runner.runner import decide, run_protocols
 from batcert.runner.sampled import drawn_result, fit_steps
@@ -48,6 +56,15 @@ from batcert.specs.bat import BatSpec
 from batcert.specs.protocol import ProtocolSpec
 from batcert.specs.resolve import display_path
 from batcert.uncertainty.inputs import StatedInput, draw, sampled, stated_inputs
+from batcert.uncertainty.surrogate import (
+    DEFAULT_BOUND,
+    ResponseSurface,
+    axial,
+    checked_draws,
+    most_runs,
+    second_stage,
+    strong_inputs,
+)
 
 BASIS_MODES = 48  # nominal bending modes spanning a drawn bat's modes (Ritz basis)
 CHUNK = 125  # draws solved together (memory and progress)
@@ -70,46 +87,162 @@ class NoStatedUncertainty(UsageProblem):
 
 def monte_carlo(built: BuiltBat, jobs: list[Job], engine: Engine, samples: int,
                 seed: int = DEFAULT_SEED,
-                on_progress: Callable[[int, int], None] | None = None
+                on_progress: Callable[[int, int], None] | None = None,
+                method: str = "surrogate", bound: float = DEFAULT_BOUND
                 ) -> list[PredictedUncertainty]:
     """The distribution of every job's result over ``samples`` draws of the stated input
     uncertainties of ``built``'s bat file and the jobs' ball files, one
-    :class:`PredictedUncertainty` per job. ``on_progress(draws_done, draws)``."""
+    :class:`PredictedUncertainty` per job. ``method``: ``"full"`` solves every draw with the
+    engine; ``"surrogate"`` (when it costs fewer engine runs) a response surface
+    (:mod:`batcert.uncertainty.surrogate`), checked on a sample of the draws, and every draw
+    when the surface misses the engine there by more than ``bound`` [metric unit].
+    ``on_progress(done, total)`` counts the draws the engine solves."""
     balls = [j.ball for j in jobs]
     inputs, z = draws(built.spec, balls, samples, seed)
-    reducer = _Reducer(built, engine)
-    nominal = drive([fit_steps(b, j.protocol, j.nominal) for b, j in zip(
-        _benches(built, jobs, engine, inputs, np.zeros((1, len(inputs))), reducer, -1)[0],
-        jobs, strict=True)], engine)
-    values = np.zeros((samples, len(jobs)))
-    shift = np.zeros(len(jobs))  # the largest move of a draw's impact point [m]
-    if on_progress:
-        on_progress(0, samples)
-    # a drawn wall is a new barrel (about 0.25 s): smaller chunks keep the progress moving
-    chunk = WALL_CHUNK if any(s.field == "wall" for s in inputs) else CHUNK
-    for start in range(0, samples, chunk):
-        rows = z[start:start + chunk]
-        fits = drive([fit_steps(b, j.protocol, j.nominal)
-                      for benches in _benches(built, jobs, engine, inputs, rows, reducer, start)
-                      for b, j in zip(benches, jobs, strict=True)], engine)
-        for k, fit in enumerate(fits):
-            i, n = divmod(k, len(jobs))
-            values[start + i, n], x = drawn_result(jobs[n].protocol, jobs[n].nominal,
-                                                   nominal[n], fit)
-            shift[n] = max(shift[n], float(np.abs(x - nominal[n].centre).max()))
-        if on_progress:
-            on_progress(start + rows.shape[0], samples)
+    cost = most_runs(len(inputs))
+    use_surface = method == "surrogate" and cost < samples
+    solver = _Solver(built, jobs, engine, inputs, on_progress, cost if use_surface else samples)
+    if use_surface:
+        values, propagation = _by_surface(solver, z, seed, bound)
+    else:
+        values = solver.solve(z, _draw_name(range(samples)))
+        reason = "" if method == "full" else (
+            f"{samples} draws are not more than the {cost} engine runs the surface may take")
+        propagation = [Propagation("full", method, solver.done, 0, 0, None, bound, reason)
+                       for _ in jobs]
     checked = _checked_draws(values)
-    exact = np.zeros((len(checked), len(jobs)))
-    for k, i in enumerate(checked):
+    drawn = []
+    for i in checked:
         bat, drawn_balls = sampled(built.spec, balls, inputs, z[i])
-        drawn = build_bat(bat)
-        exact[k] = [r.value for r in run_protocols(
-            [(drawn, j.protocol, ball) for j, ball in zip(jobs, drawn_balls, strict=True)],
-            engine, created="")]
+        bat_built = build_bat(bat)
+        drawn += [(bat_built, j.protocol, ball) for j, ball in zip(jobs, drawn_balls, strict=True)]
+    exact = np.array([r.value for r in run_protocols(drawn, engine, created="")]).reshape(
+        len(checked), len(jobs))  # the full runs, all in the same engine batches
     error = np.abs(exact - values[checked]).max(axis=0)
+    words = solver.method if propagation[0].method == "full" else _surface_words(
+        propagation[0], solver.method)
     return [_summary(j, inputs, z, values[:, k], seed, float(error[k]), len(checked),
-                     float(shift[k]), reducer.method) for k, j in enumerate(jobs)]
+                     float(solver.shift[k]), words, propagation[k])
+            for k, j in enumerate(jobs)]
+
+
+def _draw_name(numbers) -> list[str]:
+    return [f"draw {i + 1}" for i in numbers]
+
+
+def _by_surface(solver: _Solver, z: np.ndarray, seed: int, bound: float
+                ) -> tuple[np.ndarray, list[Propagation]]:
+    """The draws' results by the response surface, and how it was checked; every draw solved
+    by the engine when the surface misses the engine by more than ``bound`` on its checked
+    draws, or a design point cannot be built (said in the propagation's reason). Two engine
+    batches: the axial points, then the second stage with the checked draws (chosen on the
+    axial points' quadratic, whose extremes are the whole surface's but for the cubic terms
+    and the interactions)."""
+    first = axial(z)
+    try:
+        axial_values = solver.solve(first, _point_names(0, first.shape[0]))
+    except InputError as exc:
+        return _fall_back(solver, z, bound, 0, 0, None, _unbuilt(exc))
+    strong = strong_inputs(axial_values)
+    more = second_stage(z, strong)
+    checked = checked_draws(z, ResponseSurface.fit(first, axial_values, [False] * z.shape[1])(z),
+                            seed)
+    solver.total = solver.done + len(more) + len(checked)
+    try:
+        second = solver.solve(np.concatenate([more, z[checked]]), _point_names(
+            first.shape[0], len(more)) + _draw_name(checked))
+    except InputError as exc:
+        return _fall_back(solver, z, bound, first.shape[0], 0, None, _unbuilt(exc))
+    points = np.concatenate([first, more])
+    surface = ResponseSurface.fit(points, np.concatenate([axial_values, second[:len(more)]]),
+                                  strong)
+    predicted = surface(z)
+    difference = np.abs(predicted[checked] - second[len(more):]).max(axis=0)
+    if np.all(difference <= bound):
+        return predicted, [Propagation("surrogate", "surrogate", solver.done, points.shape[0],
+                                       len(checked), float(d), bound) for d in difference]
+    worst = int(np.argmax(difference))
+    reason = (f"the response surface missed the engine by {difference[worst]:.2g} on "
+              f"{len(checked)} checked draws{_of(solver, worst)}, more than the bound "
+              f"{bound:g}")
+    return _fall_back(solver, z, bound, points.shape[0], len(checked), difference, reason)
+
+
+def _unbuilt(exc: InputError) -> str:
+    return ("a design point of the response surface (or a checked draw) cannot be built: "
+            + exc.problems[0].message)
+
+
+def _point_names(first: int, count: int) -> list[str]:
+    return [f"the response surface's design point {first + i + 1}" for i in range(count)]
+
+
+def _of(solver: _Solver, k: int) -> str:
+    return f" (protocol {solver.jobs[k].protocol.id})" if len(solver.jobs) > 1 else ""
+
+
+def _fall_back(solver: _Solver, z: np.ndarray, bound: float, points: int, checked: int,
+               difference: np.ndarray | None, reason: str
+               ) -> tuple[np.ndarray, list[Propagation]]:
+    solver.total = solver.done + z.shape[0]
+    values = solver.solve(z, _draw_name(range(z.shape[0])))
+    return values, [Propagation("full", "surrogate", solver.done, points, checked,
+                                None if difference is None else float(difference[k]), bound,
+                                reason) for k in range(len(solver.jobs))]
+
+
+def _surface_words(p: Propagation, each: str) -> str:
+    return ("a response surface in the inputs' standard uncertainties (quadratic in each, "
+            "cubic in the strong ones, with their interactions; every draw's result from it), "
+            "fitted on "
+            f"{p.design_points} design points and checked on {p.checked_draws} of the draws; "
+            f"the engine's runs: {each}")
+
+
+class _Solver:
+    """Draws (rows of standard uncertainties) solved by the engine: each drawn bat built like
+    the bat file and solved on the stencils around the nominal impact points, in chunks."""
+
+    def __init__(self, built: BuiltBat, jobs: list[Job], engine: Engine,
+                 inputs: list[StatedInput], on_progress: Callable[[int, int], None] | None,
+                 total: int) -> None:
+        self.built, self.jobs, self.engine, self.inputs = built, jobs, engine, inputs
+        self.reducer = _Reducer(built, engine)
+        self.method = self.reducer.method
+        self.nominal = drive([fit_steps(b, j.protocol, j.nominal) for b, j in zip(
+            _benches(built, jobs, engine, inputs, np.zeros((1, len(inputs))), self.reducer,
+                     ["the nominal inputs"])[0], jobs, strict=True)], engine)
+        self.shift = np.zeros(len(jobs))  # the largest move of a draw's impact point [m]
+        self.on_progress, self.done, self.total = on_progress, 0, total
+        # a drawn wall is a new barrel (about 0.25 s): smaller chunks keep the progress moving
+        self.chunk = WALL_CHUNK if any(s.field == "wall" for s in inputs) else CHUNK
+        self._progress()
+
+    def _progress(self) -> None:
+        if self.on_progress:
+            self.on_progress(self.done, self.total)
+
+    def solve(self, z: np.ndarray, names: list[str]) -> np.ndarray:
+        """Each row's result under each job, shape (rows, jobs); ``names``: each row's, for an
+        error (``draw 12``)."""
+        jobs = self.jobs
+        values = np.zeros((z.shape[0], len(jobs)))
+        for start in range(0, z.shape[0], self.chunk):
+            rows = z[start:start + self.chunk]
+            fits = drive([fit_steps(b, j.protocol, j.nominal)
+                          for benches in _benches(self.built, jobs, self.engine, self.inputs,
+                                                  rows, self.reducer,
+                                                  names[start:start + self.chunk])
+                          for b, j in zip(benches, jobs, strict=True)], self.engine)
+            for k, fit in enumerate(fits):
+                i, n = divmod(k, len(jobs))
+                values[start + i, n], x = drawn_result(jobs[n].protocol, jobs[n].nominal,
+                                                       self.nominal[n], fit)
+                self.shift[n] = max(self.shift[n],
+                                    float(np.abs(x - self.nominal[n].centre).max()))
+            self.done += rows.shape[0]
+            self._progress()
+        return values
 
 
 def draws(bat: BatSpec, balls: list[BallSpec], samples: int, seed: int
@@ -166,17 +299,16 @@ class _Reducer:
 
 
 def _benches(built: BuiltBat, jobs: list[Job], engine: Engine, inputs: list[StatedInput],
-             rows: np.ndarray, reducer: _Reducer, first: int) -> list[list[Bench]]:
-    """For each row of draws ``rows``, its bat and balls on the bench of each job (``first``:
-    the first row's draw number, -1 for the nominal inputs)."""
+             rows: np.ndarray, reducer: _Reducer, names: list[str]) -> list[list[Bench]]:
+    """For each row of draws ``rows``, its bat and balls on the bench of each job (``names``:
+    each row's, for an error: ``draw 12``, ``the nominal inputs``)."""
     drawn, balls = [], []
     for i, row in enumerate(rows):
         bat, row_balls = sampled(built.spec, [j.ball for j in jobs], inputs, row)
         try:
             drawn.append(build_bat(bat))
         except InputError as exc:
-            where = "the nominal inputs" if first < 0 else f"draw {first + i + 1}"
-            raise InputError([replace(p, message=f"{p.message} (in {where} of the Monte "
+            raise InputError([replace(p, message=f"{p.message} (in {names[i]} of the Monte "
                                       "Carlo, from the stated uncertainties)")
                               for p in exc.problems]) from None
         balls.append(row_balls)
@@ -189,7 +321,8 @@ def _benches(built: BuiltBat, jobs: list[Job], engine: Engine, inputs: list[Stat
 
 
 def _summary(job: Job, inputs: list[StatedInput], z: np.ndarray, values: np.ndarray, seed: int,
-             error: float, checked: int, shift: float, method: str) -> PredictedUncertainty:
+             error: float, checked: int, shift: float, method: str, propagation: Propagation
+             ) -> PredictedUncertainty:
     n = values.size
     design = np.column_stack([np.ones(n), z])
     coef, *_ = np.linalg.lstsq(design, values, rcond=None)
@@ -224,4 +357,4 @@ def _summary(job: Job, inputs: list[StatedInput], z: np.ndarray, values: np.ndar
         else float(np.sqrt(passes * (1 - passes) / n)),
         nominal_value=float(nominal.value), full_run_difference=error, checked_draws=checked,
         largest_location_shift=shift,
-        values=[float(v) for v in values], note=note)
+        values=[float(v) for v in values], note=note, propagation=propagation)

@@ -19,6 +19,7 @@ ASH = REPO / "bats" / "ash-34.yaml"
 BALL = REPO / "protocols" / "balls" / "collegiate-baseball.yaml"
 BBCOR = REPO / "protocols" / "ncaa-bbcor.yaml"
 N = 40
+SURFACE_N = 100  # more draws than the response surface's engine runs (at most 69 here)
 DEFAULT_SEED = 20011  # documented default of --seed (run --help, docs/uncertainty.md)
 
 
@@ -115,6 +116,11 @@ def test_json_gives_the_distribution(runs):
         ("ball", "mass"), ("ball", "cor")]
     assert all(i["distribution"] == "uniform" for i in u["inputs"])
     assert u["inputs"][0]["nominal"] == [0.906]
+    # 40 draws cost fewer engine runs than the response surface would (69 for five inputs):
+    # every draw is solved, and the document says why
+    p = u["propagation"]
+    assert (p["method"], p["requested"], p["engine_draws"]) == ("full", "surrogate", N)
+    assert p["reason"] == "40 draws are not more than the 69 engine runs the surface may take"
 
 
 def test_same_seed_same_draws_other_seed_other_draws(runs):
@@ -136,3 +142,77 @@ def test_markdown_report_has_the_monte_carlo_section(runs):
     run = written["results"][0] if "results" in written else written
     assert run["uncertainty"]["values"] == json.loads(runs[0].stdout)["results"][0][
         "uncertainty"]["values"]
+
+
+@pytest.mark.parametrize("option, value, message", [
+    ("--uncertainty-method", "fast", "Invalid value for '--uncertainty-method': 'fast' is not one of"),
+    ("--uncertainty-bound", "0", "Invalid value for '--uncertainty-bound': must be above 0, got 0.0"),
+    ("--uncertainty-bound", "-1e-4", "must be above 0, got -0.0001"),
+    ("--uncertainty-bound", "nan", "must be a finite number, got nan"),
+    ("--uncertainty-bound", "small", "expected a number, got str 'small'"),
+])
+def test_bad_method_or_bound_is_a_usage_error(option, value, message):
+    result = invoke("run", "ash-34", "-p", "ncaa-bbcor", "--uncertainty", N, option, value,
+                    "--json")
+    assert result.exit_code == 2
+    assert message in " ".join(result.stderr.split())
+    assert result.stdout == ""
+
+
+@pytest.mark.parametrize("option, value", [("--uncertainty-method", "full"),
+                                           ("--uncertainty-bound", "1e-3")])
+def test_method_and_bound_need_uncertainty(option, value):
+    result = invoke("run", "ash-34", "-p", "ncaa-bbcor", option, value, "--json")
+    assert result.exit_code == 2
+    assert f"{option} needs --uncertainty N" in result.stderr
+
+
+@pytest.fixture(scope="module")
+def surface_runs(tmp_path_factory):
+    """SURFACE_N draws by the response surface (the default; Markdown report and the terminal
+    view) and by full draws (JSON)."""
+    out = tmp_path_factory.mktemp("surface")
+    surface = invoke("run", "ash-34", "-p", "ncaa-bbcor", "--uncertainty", SURFACE_N, "--out",
+                     out, "--format", "json,md")
+    full = invoke("run", "ash-34", "-p", "ncaa-bbcor", "--uncertainty", SURFACE_N,
+                  "--uncertainty-method", "full", "--json")
+    return surface, full, out
+
+
+def test_the_report_states_the_surface_and_its_check(surface_runs):
+    surface, full, out = surface_runs
+    [js] = out.glob("*.json")
+    written = json.loads(js.read_text(encoding="utf-8"))
+    u = (written["results"][0] if "results" in written else written)["uncertainty"]
+    p = u["propagation"]
+    assert (p["method"], p["requested"], p["reason"], p["bound"]) == (
+        "surrogate", "surrogate", "", 1e-4)
+    assert p["checked_draws"] == 8 and p["engine_draws"] == p["design_points"] + 8 < SURFACE_N
+    assert 0 < p["largest_difference"] <= 1e-4
+    f = json.loads(full.stdout)["results"][0]["uncertainty"]
+    assert (f["propagation"]["method"], f["propagation"]["requested"]) == ("full", "full")
+    assert f["propagation"]["largest_difference"] is None
+    # the same draws: the surface's results are the engine's to within the bound (measured
+    # 3e-6 on ash-34)
+    np.testing.assert_allclose(u["values"], f["values"], rtol=0, atol=1e-4)
+    [md] = out.glob("*.md")
+    text = " ".join(md.read_text(encoding="utf-8").split())
+    assert "| Propagation | response surface |" in text
+    assert "| Surrogate check |" in text and "bound 0.00010" in text
+    assert "engine runs in all" in text
+    terminal = " ".join(surface.stdout.split())  # the terminal's sentence says it too
+    assert (f"fitted on {p['design_points']} engine runs; the engine's own results for 8 of "
+            "the draws differ from it by at most") in terminal
+
+
+def test_a_surface_beyond_its_bound_is_replaced_by_every_draw_and_the_terminal_says_so():
+    # 1e-12 is below what the surface misses by on the flexible engine (its scatter from draw
+    # to draw alone is about 1e-6): every draw is solved, and the terminal's sentence says why
+    result = invoke("run", "ash-34", "-p", "ncaa-bbcor", "--uncertainty", SURFACE_N,
+                    "--uncertainty-bound", "1e-12", "--no-reports")
+    assert result.exit_code in (0, 1)
+    text = " ".join(result.stdout.split())
+    assert "Every draw solved by the engine (" in text
+    assert ("engine runs), not by the response surface: the response surface missed the engine "
+            "by ") in text
+    assert "on 8 checked draws, more than the bound 1e-12." in text

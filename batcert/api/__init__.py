@@ -128,7 +128,8 @@ def run(bat: str | Path | LoadedBat, protocol: str | Path | ProtocolInputs,
         engine on a sample of them; ``"full"``: every draw solved by the engine.
     uncertainty_bound : float, optional
         The surface's largest allowed difference on the checked draws, in the metric's unit
-        (default 1e-4); beyond it every draw is solved by the engine.
+        (default: 1e-4, or 0.01 m/s for exit speed); beyond it every draw is solved by
+        the engine.
 
     Returns
     -------

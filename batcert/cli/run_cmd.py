@@ -77,7 +77,7 @@ Examples:
               callback=_read_bound,
               help="The largest difference between the surrogate and the engine on the checked "
                    "draws, in the metric's unit, beyond which every draw is solved [default: "
-                   "1e-4].")
+                   "the last digit the reports show: 1e-4, or 0.01 m/s for exit speed].")
 @_output_options("results")
 @FIGURES_OPTION
 @_guard

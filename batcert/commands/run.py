@@ -36,11 +36,11 @@ def with_uncertainty(bat: LoadedBat, protocols: list[ProtocolInputs], results: l
     Monte Carlo draws of the stated input uncertainties (:mod:`batcert.uncertainty`; ``seed``
     None: its default seed). ``method``: ``"surrogate"`` (a response surface, checked on a
     sample of the draws against the engine, every draw solved when it misses by more than
-    ``bound`` [metric unit]; None: its default, 1e-4) or ``"full"`` (every draw solved)."""
+    ``bound`` [metric unit]; None: each metric's default, 1e-4, or 0.01 m/s for the exit
+    speed) or ``"full"`` (every draw solved)."""
     from batcert.uncertainty.propagate import DEFAULT_SEED, Job, monte_carlo
-    from batcert.uncertainty.surrogate import DEFAULT_BOUND
     eng = get_engine(engine, **engine_options)
     jobs = [Job(p.protocol, p.ball, r) for p, r in zip(protocols, results, strict=True)]
     spread = monte_carlo(bat.built, jobs, eng, samples, DEFAULT_SEED if seed is None else seed,
-                         on_progress, method, DEFAULT_BOUND if bound is None else bound)
+                         on_progress, method, bound)
     return [replace(r, uncertainty=u) for r, u in zip(results, spread, strict=True)]

@@ -57,10 +57,10 @@ from batcert.specs.protocol import ProtocolSpec
 from batcert.specs.resolve import display_path
 from batcert.uncertainty.inputs import StatedInput, draw, sampled, stated_inputs
 from batcert.uncertainty.surrogate import (
-    DEFAULT_BOUND,
     ResponseSurface,
     axial,
     checked_draws,
+    default_bound,
     most_runs,
     second_stage,
     strong_inputs,
@@ -88,28 +88,31 @@ class NoStatedUncertainty(UsageProblem):
 def monte_carlo(built: BuiltBat, jobs: list[Job], engine: Engine, samples: int,
                 seed: int = DEFAULT_SEED,
                 on_progress: Callable[[int, int], None] | None = None,
-                method: str = "surrogate", bound: float = DEFAULT_BOUND
+                method: str = "surrogate", bound: float | None = None
                 ) -> list[PredictedUncertainty]:
     """The distribution of every job's result over ``samples`` draws of the stated input
     uncertainties of ``built``'s bat file and the jobs' ball files, one
     :class:`PredictedUncertainty` per job. ``method``: ``"full"`` solves every draw with the
     engine; ``"surrogate"`` (when it costs fewer engine runs) a response surface
     (:mod:`batcert.uncertainty.surrogate`), checked on a sample of the draws, and every draw
-    when the surface misses the engine there by more than ``bound`` [metric unit].
+    when the surface misses the engine there by more than ``bound`` [metric unit; None: each
+    job's metric's :func:`~batcert.uncertainty.surrogate.default_bound`].
     ``on_progress(done, total)`` counts the draws the engine solves."""
+    bounds = np.array([default_bound(j.protocol.metric) if bound is None else bound
+                       for j in jobs])
     balls = [j.ball for j in jobs]
     inputs, z = draws(built.spec, balls, samples, seed)
     cost = most_runs(len(inputs))
     use_surface = method == "surrogate" and cost < samples
     solver = _Solver(built, jobs, engine, inputs, on_progress, cost if use_surface else samples)
     if use_surface:
-        values, propagation = _by_surface(solver, z, seed, bound)
+        values, propagation = _by_surface(solver, z, seed, bounds)
     else:
         values = solver.solve(z, _draw_name(range(samples)))
         reason = "" if method == "full" else (
             f"{samples} draws are not more than the {cost} engine runs the surface may take")
-        propagation = [Propagation("full", method, solver.done, 0, 0, None, bound, reason)
-                       for _ in jobs]
+        propagation = [Propagation("full", method, solver.done, 0, 0, None, float(b), reason)
+                       for b in bounds]
     checked = _checked_draws(values)
     drawn = []
     for i in checked:
@@ -130,11 +133,11 @@ def _draw_name(numbers) -> list[str]:
     return [f"draw {i + 1}" for i in numbers]
 
 
-def _by_surface(solver: _Solver, z: np.ndarray, seed: int, bound: float
+def _by_surface(solver: _Solver, z: np.ndarray, seed: int, bound: np.ndarray
                 ) -> tuple[np.ndarray, list[Propagation]]:
     """The draws' results by the response surface, and how it was checked; every draw solved
-    by the engine when the surface misses the engine by more than ``bound`` on its checked
-    draws, or a design point cannot be built (said in the propagation's reason). Two engine
+    by the engine when the surface misses the engine by more than ``bound`` (one per job) on
+    its checked draws, or a design point cannot be built (said in the propagation's reason). Two engine
     batches: the axial points, then the second stage with the checked draws (chosen on the
     axial points' quadratic, whose extremes are the whole surface's but for the cubic terms
     and the interactions)."""
@@ -160,11 +163,12 @@ def _by_surface(solver: _Solver, z: np.ndarray, seed: int, bound: float
     difference = np.abs(predicted[checked] - second[len(more):]).max(axis=0)
     if np.all(difference <= bound):
         return predicted, [Propagation("surrogate", "surrogate", solver.done, points.shape[0],
-                                       len(checked), float(d), bound) for d in difference]
-    worst = int(np.argmax(difference))
+                                       len(checked), float(d), float(b))
+                           for d, b in zip(difference, bound, strict=True)]
+    worst = int(np.argmax(difference / bound))
     reason = (f"the response surface missed the engine by {difference[worst]:.2g} on "
               f"{len(checked)} checked draws{_of(solver, worst)}, more than the bound "
-              f"{bound:g}")
+              f"{bound[worst]:g}")
     return _fall_back(solver, z, bound, points.shape[0], len(checked), difference, reason)
 
 
@@ -181,14 +185,14 @@ def _of(solver: _Solver, k: int) -> str:
     return f" (protocol {solver.jobs[k].protocol.id})" if len(solver.jobs) > 1 else ""
 
 
-def _fall_back(solver: _Solver, z: np.ndarray, bound: float, points: int, checked: int,
+def _fall_back(solver: _Solver, z: np.ndarray, bound: np.ndarray, points: int, checked: int,
                difference: np.ndarray | None, reason: str
                ) -> tuple[np.ndarray, list[Propagation]]:
     solver.total = solver.done + z.shape[0]
     values = solver.solve(z, _draw_name(range(z.shape[0])))
     return values, [Propagation("full", "surrogate", solver.done, points, checked,
-                                None if difference is None else float(difference[k]), bound,
-                                reason) for k in range(len(solver.jobs))]
+                                None if difference is None else float(difference[k]),
+                                float(bound[k]), reason) for k in range(len(solver.jobs))]
 
 
 def _surface_words(p: Propagation, each: str) -> str:

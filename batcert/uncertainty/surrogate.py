@@ -53,14 +53,21 @@ import numpy as np
 
 SURROGATE_CHECKED = 8  # actual draws solved by the engine to check the surface
 EXTREMES = 4  # of them, at most so many chosen as extremes (the rest at random)
-# the largest difference from the engine the surface may make on its checked draws [metric
-# unit]: a tenth of the last digit of a limit stated to three decimals (BBCOR 0.500), and for
-# the shipped bats under 1 % of the result's standard deviation
-DEFAULT_BOUND = 1e-4
 # an input is strong when its effect (the largest change of a result along its axis) is at
 # least this share of the strongest input's; pairs with a strong input get corner points
 STRONG = 0.1
 CORNERS = ((1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0))
+
+
+def default_bound(metric: str) -> float:
+    """The largest difference from the engine the surface may make on its checked draws, by
+    default [metric unit]: one unit of the last digit the reports show of the metric
+    (:data:`batcert.methods.metrics.METRICS`' ``digits``): 1e-4 for BBCOR, BESR, BPF and e_A
+    (a tenth of the last digit of a limit stated to three decimals, BBCOR 0.500; for the
+    shipped bats under 1 % of the result's standard deviation), 0.01 m/s for the exit speed
+    (0.02 mph)."""
+    from batcert.methods.metrics import METRICS
+    return 10.0 ** -METRICS[metric].digits
 
 
 def _point(d: int, at: dict[int, float]) -> np.ndarray:

@@ -76,7 +76,6 @@ lin.LEVELS = LEVELS
 PENALTY = 1e5
 GMRES_MAX = 15
 NEWTON_TOL = 1e-7
-GAP_TOL = 2e-5
 VERBOSE = True
 log = lin.log
 
@@ -276,14 +275,14 @@ class Linear:
 
 def solve_step(ball, rc, stiff, u, Fq, u0, linear, force, max_it=60):
     """Newton on (u, Fq) at the prescribed mean displacement -u0; returns u, Fq, contact state,
-    iterations. A primal-dual active set with Newton inside: the contact's set is held fixed
-    (``force``: the predicted one) while Newton converges (a smooth problem), then the nodes
-    with a gap beyond +-GAP_TOL u0 on the wrong side (held with a tensile reaction, or
-    penetrating outside the set) are moved and Newton resumes, until none is left or a set
-    comes back (the edge's last node swings; accepted, its gap reported as
-    ``edge_gap_over_u``)."""
+    iterations and active-set updates. A primal-dual active set with Newton inside: the
+    contact's set is held fixed (``force``: the predicted one) while Newton converges (a smooth
+    problem), then the nodes on the wrong side (held with a tensile reaction, g > 0, or
+    penetrating outside the set) are moved and Newton resumes, until none is left; if a set
+    comes back, one node at a time (Murty's least-index rule), as fe_ball_contact.signorini.
+    """
     fr = ball.free
-    held, seen = force.copy(), []
+    held, seen, murty = force.copy(), set(), False
     wv = np.zeros(ball.N)
     wv[1::3] = ball.w / ball.volume
     wf = wv[fr]
@@ -297,13 +296,15 @@ def solve_step(ball, rc, stiff, u, Fq, u0, linear, force, max_it=60):
         res = np.linalg.norm(R, np.inf) / max(abs(Fq), 1e-300)
         if it > 1 and res < NEWTON_TOL and abs(cm) < 1e-10 * u0:
             g = st['gap']
-            wrong = (held & (g > GAP_TOL * u0)) | (~held & (g < -GAP_TOL * u0))
-            key = np.packbits(held ^ wrong).tobytes()
-            if not wrong.any() or key in seen:
-                st['edge_gap_over_u'] = float(np.abs(g[wrong]).max() / u0) if wrong.any() else 0.0
-                return u, Fq, st, it - 1
-            seen.append(np.packbits(held).tobytes())
+            wrong = (held & (g > 0)) | (~held & (g < -1e-9 * u0))
+            if not wrong.any():
+                return u, Fq, st, it - 1, len(seen)
+            if np.packbits(held ^ wrong).tobytes() in seen:
+                murty = True
+            if murty:   # a set came back: move the first wrong node only (Murty's rule)
+                wrong[np.nonzero(wrong)[0][1:]] = False
             held = held ^ wrong
+            seen.add(np.packbits(held).tobytes())
             continue
         M = K + Kc
         x1, x2 = linear.solve(M, [-R, ball.fb[fr]], st['active'])
@@ -323,6 +324,8 @@ def solve_step(ball, rc, stiff, u, Fq, u0, linear, force, max_it=60):
                 t *= 0.5
                 assert t > 1e-3, 'no admissible step'
         u, Fq = u + t * du, Fq + t * dF
+        if VERBOSE and t < 1:
+            log('      step cut to %g (J > 0)' % t)
     raise RuntimeError('Newton did not converge in %d iterations (residual %.2e)' % (max_it, res))
 
 
@@ -353,7 +356,6 @@ def footprint(ball, u, Fq, st, rc):
     out.update(F_N=F, F_contact_check=tot_y / Fq - 1, pole_reaction_N=4 * pole_r,
                n_contact_nodes_quarter=int(act.sum()),
                min_reaction_over_max=float(lam.min() / lam.max()),
-               edge_gap_over_u=st['edge_gap_over_u'],
                max_penetration_over_u=float(max(0.0, -st['gap'].min())))
     return out
 
@@ -379,9 +381,9 @@ def run_case(lev, nu, name, steps=STEPS, dump=None):
         # the first iteration's active set: the nodes within half the increment of the surface
         du0 = u0 - (hist[-1][2] if hist else 0.0)
         first = contact(ball, ug, rc, stiff)[2]['gap'] < 0.5 * du0
-        u, Fq, st, its = solve_step(ball, rc, stiff, ug, Fg, u0, linear, first)
+        u, Fq, st, its, sets = solve_step(ball, rc, stiff, ug, Fg, u0, linear, first)
         hist.append((u.copy(), Fq, u0))
-        r = dict(u_over_R=ur, u_mm=u0 * 1e3, newton_iterations=its)
+        r = dict(u_over_R=ur, u_mm=u0 * 1e3, newton_iterations=its, active_set_updates=sets)
         r.update(footprint(ball, u, Fq, st, rc))
         r['max_penetration_over_u'] /= u0
         h = lin.hertz(u0, rc, nu)
@@ -430,7 +432,7 @@ def main():
 
 ROW_KEYS = ('u_over_R', 'u_mm', 'F_N', 'a_eq_mm', 'b_eq_mm', 'a_eq_undeformed_mm', 'b_eq_undeformed_mm',
             'x4_over_x2sq', 's4_over_s2sq', 'x_max_mm', 's_max_mm', 'n_contact_nodes_quarter',
-            'max_penetration_over_u', 'min_reaction_over_max', 'edge_gap_over_u', 'F_contact_check',
+            'max_penetration_over_u', 'min_reaction_over_max', 'active_set_updates', 'F_contact_check',
             'newton_iterations',
             'hertz', 'ratio_to_hertz')
 FIT_LEVEL, FIT_NU = 'Q3', 'nu=0.30'

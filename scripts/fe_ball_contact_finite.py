@@ -393,7 +393,7 @@ def run_case(lev, nu, name, steps=STEPS, dump=None):
                                    b_over_a=(r['b_eq_mm'] / r['a_eq_mm']) / (h['b'] / h['a']))
         rows.append(r)
         if dump:
-            lin.jdump(dict(partial=True, rows=rows), dump)
+            lin.jdump(dict(partial=True, level=lev, nu=nu, counterface=name, rows=rows), dump)
         log('  u/R=%.3f F=%9.3f N a_eq=%6.3f (H %6.3f) b_eq=%6.3f (H %6.3f) mm n=%4d its %d pen %.1e'
             '  [%.0f s, %d LU, %d GMRES]' % (
                 ur, r['F_N'], r['a_eq_mm'], r['hertz']['a_mm'], r['b_eq_mm'], r['hertz']['b_mm'],
@@ -474,7 +474,15 @@ def record(files, to):
     against Q3 on CONVERGENCE_CASE) and the fit of FIT_LEVEL at FIT_NU."""
     import scipy
     import skfem
-    runs = [json.load(open(f)) for f in files]
+    runs = []
+    for f in files:
+        r = json.load(open(f))
+        if r.get('partial'):   # a run cut short: its steps so far, named as main() names them
+            level, rest = os.path.basename(f)[:-5].split('_', 1)
+            name, nu = rest.rsplit('_', 1)
+            r.update(level=level, counterface=name, nu=float(nu), mesh=dict(partial=True), time_s=None,
+                     lu_factorisations=None, gmres_iterations=None)
+        runs.append(r)
     results, meshes, times = {}, {}, {}
     for r in runs:
         nu = 'nu=%.2f' % r['nu']
@@ -482,7 +490,8 @@ def record(files, to):
             lin._sig({k: row[k] for k in ROW_KEYS}) for row in r['rows']]
         meshes[r['level']] = r['mesh']
         times['%s %s %s' % (r['level'], nu, r['counterface'])] = dict(
-            time_s=round(r['time_s'], 1), lu_factorisations=r['lu_factorisations'],
+            time_s=r['time_s'] and round(r['time_s'], 1), partial=bool(r.get('partial')),
+            lu_factorisations=r['lu_factorisations'],
             gmres_iterations=r['gmres_iterations'])
     nu, name = CONVERGENCE_CASE
     conv = {}

@@ -36,9 +36,9 @@ import numpy as np
 # tests/validation/test_footprint_against_fe.py checks these numbers against it.
 FE_RHO = (0.0, 36.9 / 33.3375, 36.9 / 28.575)
 FE_FIT = {
-    "a": ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0)),
-    "b": ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0)),
-    "stiffness": ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0)),
+    "a": ((0.194406, 0.209687), (0.163672, 0.0693614), (0.157356, 0.0642583)),
+    "b": ((0.194406, 0.209687), (0.0917604, 0.45438), (0.0934, 0.441589)),
+    "stiffness": ((0, 0), (-0.0394546, -0.395215), (-0.0430846, -0.433536)),
 }
 FE_X_MAX = 0.40  # the largest compression over the ball's radius of the FE [-]
 

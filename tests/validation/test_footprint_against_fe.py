@@ -1,20 +1,21 @@
-"""batcert's contact footprint (Hertz's ellipse, batcert/physics/balls/footprint.py) against the
-independent 3-D finite-element sphere on a rigid barrel (scripts/fe_ball_contact.py, recorded in
-data/fe_ball_contact.json; its own reproduction is test_fe_ball_contact_reproduces.py).
+"""batcert's contact footprint (batcert/physics/balls/footprint.py, footprint_rules.py) against
+the independent 3-D finite-element spheres on a rigid barrel (scripts/fe_ball_contact.py and
+scripts/fe_ball_contact_finite.py, recorded in data/fe_ball_contact.json; their own
+reproduction is test_fe_ball_contact_reproduces.py).
 
-The FE model: a linear-elastic sphere of radius 36.9 mm pressed by a body force onto a rigid
-2 5/8 in or 2 1/4 in cylinder or a flat, frictionless contact, the compression being the
+The linear FE model: a linear-elastic sphere of radius 36.9 mm pressed by a body force onto a
+rigid 2 5/8 in or 2 1/4 in cylinder or a flat, frictionless contact, the compression being the
 sphere's centre-of-mass approach (as in a ball law), meshes M1 and M2 (which agree to 0.3 %: the
-FE uncertainty), Poisson's ratios 0.30 and 0.45, compressions u / R_b = 0.01 ... 0.15.
+FE uncertainty), Poisson's ratios 0.30 and 0.45, compressions u / R_b = 0.01 ... 0.15. It shows
+that Hertz's rule (footprint rule "hertz") has the shape and the pressure marginals of the
+sphere at small compressions, and is smaller and stiffer on a barrel as the compression grows.
 
-What it shows (docs/validation.md, "The ball's footprint"):
-* the footprint's shape (around / along) and its pressure marginals are Hertz's at small
-  compressions, which the engine uses;
-* at the same centre compression the finite sphere's footprint is larger than Hertz's, whose
-  compression is the approach of distant points: 3 % at u / R_b = 0.01 growing to 9-14 % at
-  0.15; and the barrel's stiffness factor is below Hertz's 0.84 (0.83 at 0.01, 0.77 at 0.15).
-  These are model limits, stated as bounds here so that a change to the footprint rule that
-  moves them shows up; their effect on BBCOR (under 0.004) is in docs/validation.md.
+The finite-strain FE model ("finite_strain"): the same set-up with a compressible neo-Hookean
+sphere at finite deformation and the contact on the deformed positions, u / R_b = 0.01 ... 0.40
+(the engine's 0.2-0.4), meshes Q3 and quick (which agree to 0.6 %). batcert's rule
+"fe-finite-strain" (the engine's default) is fitted to it; the tests below check the fit, the
+FE against the linear FE at small compressions, and its mesh convergence (docs/validation.md,
+"The ball's footprint").
 """
 
 from __future__ import annotations

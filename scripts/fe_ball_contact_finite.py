@@ -22,20 +22,24 @@ What differs from the linear model (fe_ball_contact.py):
                  cylinder's radial distance minus R_c; y + R_b on the flat), the reaction along
                  the surface's normal at the deformed node; enforced by a stiff penalty (nodal
                  stiffness PENALTY x E x the node's tributary surface area / R_b: penetrations
-                 1e-4 of u or less, reported), its active set (the nodes with a negative gap)
-                 updated at every Newton iteration (a semi-smooth Newton method) until the set
-                 is steady and the residual below 1e-9 of the load; the pole keeps u_y = 0
-                 (it is on both symmetry planes and touches at any load)
+                 about 1e-4 of u or less, reported); a primal-dual active set with Newton inside:
+                 the set is held while Newton converges (residual below NEWTON_TOL of the load),
+                 then every node on the wrong side (held with g > 0, or penetrating outside) is
+                 moved, one at a time if a set comes back (Murty's rule, as the linear model);
+                 the first set of a step: the nodes within half the increment of the surface.
+                 The pole keeps u_y = 0 (it is on both symmetry planes and touches at any load)
   * solver     : Newton per load step; the linear solves by GMRES preconditioned with a sparse
-                 LU (SuperLU) of the tangent, refactored when GMRES needs more than GMRES_MAX
-                 iterations (so the LU is reused across iterations and steps)
+                 LU (SuperLU) of the tangent, refactored when the contact set changes or GMRES
+                 needs more than GMRES_MAX iterations
   * footprint  : a_eq = sqrt(5 <x^2>), b_eq = sqrt(5 <s^2>) as in the linear model, with the
                  reactions' weights, at the nodes' DEFORMED positions on the counterface (x
                  along the axis, s the arc length around it); the same at the undeformed
                  positions is reported too (it is the linear model's measure)
 
-Cases: 'cyl_2.625in', 'cyl_2.25in', 'flat'; nu = 0.3 and 0.45; mesh levels of
-fe_ball_contact.LEVELS ('quick': n = 4, 'M1': n = 6).  Results at every load step.
+Cases: 'cyl_2.625in', 'cyl_2.25in', 'flat'; nu = 0.3 and 0.45; mesh levels Q3 (n = 3, below)
+and those of fe_ball_contact.LEVELS ('quick': n = 4; M1 and M2 are too slow for a Newton
+iteration here).  Results at every load step (STEPS).  Recorded: Q3 for all six cases (6-13 min
+each on a shared 2-core machine), quick for the 2 5/8 in barrel at nu = 0.3 (33 min).
 
 Usage
   python scripts/fe_ball_contact_finite.py --level quick --nu 0.3 --counterface cyl_2.625in \
@@ -409,7 +413,7 @@ def run_case(lev, nu, name, steps=STEPS, dump=None):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument('--level', default='quick', choices=list(LEVELS))
+    ap.add_argument('--level', default='Q3', choices=list(LEVELS))
     ap.add_argument('--nu', type=float, default=0.3)
     ap.add_argument('--counterface', default='cyl_2.625in', choices=list(lin.COUNTERFACES))
     ap.add_argument('--smoke', action='store_true')

@@ -137,25 +137,26 @@ def surface(s: SystemSettings, bat: BatModel, ball: BallModel, z: np.ndarray):
     return radius, on, np.broadcast_to(scale, z.shape).copy()
 
 
-def scale_at(s: SystemSettings, ball: BallModel, on: np.ndarray, compression) -> np.ndarray:
+def scale_at(rule: str, ball: BallModel, on: np.ndarray, compression) -> np.ndarray:
     """The ball law's stiffness factor on the surfaces ``on`` [-] at the compressions ``u_rep``
     [m] (the footprint rule's, :func:`~batcert.physics.balls.footprint.stiffness_ratio`): the
     factor is held over an impact, at the compression where its footprint is taken."""
-    return np.asarray(footprint.stiffness_ratio(ball.radius, on, compression, s.footprint),
+    return np.asarray(footprint.stiffness_ratio(ball.radius, on, compression, rule),
                       dtype=float).reshape(np.shape(on))
 
 
-def patch_compression(s: SystemSettings, ball: BallModel, on: np.ndarray, scale0: np.ndarray,
+def patch_compression(rule: str, ball: BallModel, on: np.ndarray, scale0: np.ndarray,
                       speed, recoil) -> tuple[np.ndarray, np.ndarray]:
     """``u_rep`` [m] and the stiffness factor there [-] of each impact: :func:`mean_compression`
     with Hertz's factor ``scale0``, the rule's factor there, and ``u_rep`` again with it (one
     fixed-point pass: the factor moves ``u_rep`` by a few per cent, which moves the factor by
-    a few tenths of one). With the rule ``hertz``: ``u_rep`` with ``scale0``."""
+    a few tenths of one). With the footprint ``rule`` ``hertz``: ``u_rep`` with ``scale0``.
+    The rigid engine takes its factor here too."""
     u = mean_compression(ball, speed, recoil, scale0)
-    if s.footprint == "hertz":
+    if rule == "hertz":
         return u, scale0
-    u = mean_compression(ball, speed, recoil, scale_at(s, ball, on, u))
-    return u, scale_at(s, ball, on, u)
+    u = mean_compression(ball, speed, recoil, scale_at(rule, ball, on, u))
+    return u, scale_at(rule, ball, on, u)
 
 
 def group_compressions(s: SystemSettings, jobs: list, groups: list[list[int]]) -> list[np.ndarray]:
@@ -174,7 +175,8 @@ def group_compressions(s: SystemSettings, jobs: list, groups: list[list[int]]) -
     u = _wall_compressions(setup, [g[4] for g in setup])
     if s.footprint == "hertz":
         return u
-    return _wall_compressions(setup, [scale_at(s, g[0], g[3], ug) for g, ug in zip(setup, u, strict=True)])
+    return _wall_compressions(setup, [scale_at(s.footprint, g[0], g[3], ug)
+                                      for g, ug in zip(setup, u, strict=True)])
 
 
 def _wall_compressions(setup: list, scales: list[np.ndarray]) -> list[np.ndarray]:
@@ -205,10 +207,10 @@ def patch_of(s: SystemSettings, bat: BatModel, ball: BallModel, z: np.ndarray,
     edges = np.asarray(bat.z_edges, dtype=float)
     radius, on, scale = surface(s, bat, ball, z)
     if compression is None:
-        u_rep, scale = patch_compression(s, ball, on, scale, speed, recoil)
+        u_rep, scale = patch_compression(s.footprint, ball, on, scale, speed, recoil)
     else:
         u_rep = np.asarray(compression, dtype=float)
-        scale = scale_at(s, ball, on, u_rep)
+        scale = scale_at(s.footprint, ball, on, u_rep)
     along, _ = footprint.ellipse(ball.radius, on, u_rep, s.footprint)
     if not s.contact_patch:
         return Patch(z[:, None], np.ones((z.size, 1)), radius, on, scale, u_rep, ball.radius,

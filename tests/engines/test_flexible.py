@@ -223,6 +223,11 @@ def test_registered_and_settings():
     assert FlexibleEngine(footprint="hertz").settings()["footprint"] == "Hertz's footprint"
     with pytest.raises(ValueError, match="footprint must be one of"):
         FlexibleEngine(footprint="hertzian")
+    # the rigid engine takes the same rule (its stiff limit stays the flexible engine's)
+    assert RigidEngine().footprint == "fe-finite-strain"
+    assert RigidEngine(footprint="hertz").settings()["footprint"] == "Hertz's footprint"
+    with pytest.raises(ValueError, match="footprint must be one of"):
+        RigidEngine(footprint="fem")
 
 
 def test_the_footprint_rule_softens_a_hollow_barrels_contact():
@@ -578,7 +583,7 @@ def test_a_thinner_wall_is_livelier_across_the_range_of_real_barrels():
     # 0.564, 0.558, 0.546): falling as the wall thickens at every step, by more than 0.005 a
     # step up to 3.6 mm (BBCOR alloy walls are 2.5-3 mm), by 0.003 from 3.6 to 4.0 mm where
     # the softer finite-strain contact excites a stiff barrel little (0.002 is the bound
-    # there); the thick wall tends to the rigid bat (0.539, within 2 %). With Nathan's
+    # there); the thick wall tends to the rigid bat (0.536, within 2 %). With Nathan's
     # rate-free ball and batcert 0.2's largest footprint held all through the impact the same
     # barrels peaked near 2.2 kHz (docs/validation.md).
     z = np.arange(0.56, 0.86, 0.01)
@@ -682,12 +687,11 @@ def test_the_shipped_ball_lot_keeps_the_hollow_trend():
     # lot calibrated on a wood bat: issue 39): BBCOR still falls at every step as the wall
     # thickens (the hoop frequency rises), by more than 0.005 up to 3.6 mm and 0.002 beyond (as
     # test_a_thinner_wall_is_livelier_across_the_range_of_real_barrels), and the thick wall
-    # tends to the rigid bat (within 4 %: the bat's local compliance lengthens the contact of
-    # the rate-dependent ball, as on ash-34, and the rigid engine keeps Hertz's barrel factor
-    # where the flexible engine's finite-strain one is softer at u_rep). Measured with the
-    # finite-strain footprint rule 0.675, 0.621, 0.574, 0.538, 0.517, 0.509, 0.506, 0.493,
-    # rigid 0.477 (+3.4 %); with Hertz's rule, before: 0.699, 0.645, 0.598, 0.559, 0.532,
-    # 0.516, 0.510, 0.496, rigid 0.484 (+2.4 %).
+    # tends to the rigid bat (within 3 %: the bat's local compliance lengthens the contact of
+    # the rate-dependent ball, as on ash-34; both engines take the footprint rule's factor at
+    # u_rep). Measured with the finite-strain footprint rule 0.675, 0.621, 0.574, 0.538, 0.517,
+    # 0.509, 0.506, 0.493, rigid 0.484 (+1.9 %); with Hertz's rule, before: 0.699, 0.645,
+    # 0.598, 0.559, 0.532, 0.516, 0.510, 0.496, rigid 0.484 (+2.4 %).
     from batcert.commands.inputs import load_protocol_any
 
     ball = load_protocol_any("ncaa-bbcor").ball.model
@@ -696,4 +700,4 @@ def test_the_shipped_ball_lot_keeps_the_hollow_trend():
     rigid = RigidEngine().solve(hollow_bat(6e-3), ball, PIVOT, ImpactBatch(z - PIVOT, *CANNON))
     step = np.diff(bbcor)
     assert np.all(step[WALLS[1:] <= 3.6e-3] < -0.005) and np.all(step < -0.002), bbcor
-    assert bbcor[-1] == pytest.approx(rigid.cor.max(), rel=0.04)
+    assert bbcor[-1] == pytest.approx(rigid.cor.max(), rel=0.03)

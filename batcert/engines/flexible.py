@@ -61,15 +61,14 @@ from batcert.engines.flexible_system import (
     Extras,
     Patch,
     SystemSettings,
+    group_compressions,
     rigid_mode_velocities,
-    surface,
 )
 from batcert.engines.flexible_system import linear_system as build_system
 from batcert.engines.kernel.linear_system import LinearSystem, stack_systems
 from batcert.engines.kernel.march import Separation, march
-from batcert.physics import rigid
 from batcert.physics.ball import BallModel
-from batcert.physics.balls.impact1d import wall_mean_compression
+from batcert.physics.balls.footprint_rules import DEFAULT_RULE, rule
 from batcert.physics.batmodel import BatModel
 from batcert.physics.modes import Modes
 
@@ -124,9 +123,13 @@ class FlexibleEngine:
         How Nathan's hysteresis law chooses its ``e0`` (module notes); the viscoelastic law's
         loss follows from the squeeze itself.
     contact_surface : {"cylinder", "flat"}
-        The ball meets the bat's round surface (its law's stiffness times Hertz's cylinder
-        factor, :func:`~batcert.physics.balls.footprint.stiffness_ratio`) or, as in Nathan
-        2000, a flat one.
+        The ball meets the bat's round surface (its law's stiffness times the cylinder factor,
+        :func:`~batcert.physics.balls.footprint.stiffness_ratio`, at ``u_rep``) or, as in
+        Nathan 2000, a flat one.
+    footprint : str
+        The footprint rule (:data:`~batcert.physics.balls.footprint_rules.RULES`):
+        ``fe-finite-strain`` (Hertz's footprint and cylinder factor corrected by a 3-D
+        finite-strain sphere) or ``hertz`` (batcert 0.2's).
     shell_max_frequency : float
         Hollow bats: shell modes up to this frequency [Hz] join the engine; the rest is
         quasi-static residual compliance.
@@ -158,7 +161,7 @@ class FlexibleEngine:
                  shell_max_frequency: float = DEFAULT_SHELL_FREQUENCY,
                  max_contact_time: float = 0.02, record_states: bool = False,
                  contact_patch: bool = True, patch_points: int = 15,
-                 contact_surface: str = "cylinder") -> None:
+                 contact_surface: str = "cylinder", footprint: str = DEFAULT_RULE) -> None:
         if n_modes < 1 or int(n_modes) != n_modes:
             raise ValueError(f"n_modes must be a positive integer, got {n_modes!r}")
         if time_step is not None and not 0 < time_step <= 1e-4:
@@ -168,7 +171,7 @@ class FlexibleEngine:
         if contact_surface not in CONTACT_SURFACES:
             raise ValueError(f"contact_surface must be one of {CONTACT_SURFACES}, got "
                              f"{contact_surface!r}")
-        self.contact_surface = contact_surface
+        self.contact_surface, self.footprint = contact_surface, rule(footprint).name
         self.n_modes, self.refine = int(n_modes), int(refine)
         self.time_step = None if time_step is None else float(time_step)
         self.residual, self.ball_loss = bool(residual), ball_loss
@@ -197,8 +200,9 @@ class FlexibleEngine:
                 "contact": "the ball's law (viscoelastic, or Nathan 2000 hysteresis with " + (
                     "e0 = ball COR at the rigid-wall speed of equal compression)"
                     if self.ball_loss == "compression" else "e0 = ball COR at relative speed)"),
-                "contact_surface": ("the barrel's cylinder (Hertz's stiffness factor)"
-                                    if self.contact_surface == "cylinder" else "flat"),
+                "contact_surface": ("the barrel's cylinder (stiffness factor of the footprint "
+                                    "rule)" if self.contact_surface == "cylinder" else "flat"),
+                "footprint": rule(self.footprint).title,
                 "barrel": f"shell of revolution (Sanders), orders 0 and 2+; modes up to "
                           f"{self.shell_max_frequency:g} Hz, the rest quasi-static",
                 "damping": "zeta = material loss factor / 2 on every flexible mode",
@@ -209,7 +213,8 @@ class FlexibleEngine:
     def system_settings(self) -> SystemSettings:
         """The settings that shape the linear system."""
         return SystemSettings(self.n_modes, self.refine, self.residual, self.shell_max_frequency,
-                              self.contact_surface, self.contact_patch, self.patch_points)
+                              self.contact_surface, self.contact_patch, self.patch_points,
+                              self.footprint)
 
     def linear_system(self, bat: BatModel, ball: BallModel, pivot: float, batch: ImpactBatch,
                       support: str = "pinned", modes: Modes | None = None,
@@ -308,7 +313,7 @@ class FlexibleEngine:
         (:mod:`batcert.engines.flexible_family`)."""
         ready: dict[int, Prepared] = {}
         groups = list(self._alike(jobs).values())
-        compressions = self._compressions(jobs, groups)
+        compressions = group_compressions(self.system_settings(), jobs, groups)
         merged = [jobs[m[0]].with_batch(passes.concatenate([jobs[i].batch for i in m]))
                   for m in groups]
         built = linear_systems(self.system_settings(), merged, compressions)
@@ -320,33 +325,6 @@ class FlexibleEngine:
                 ready[i] = (Prepared(jobs[i], system, extras) if len(members) == 1 else
                             Prepared(jobs[i], system.rows(a, b), extras.rows(a, b)))
         return [ready[i] for i in range(len(jobs))]
-
-    def _compressions(self, jobs: list[Job], groups: list[list[int]]) -> list[np.ndarray]:
-        """Each group's ``u_rep`` (:func:`~batcert.engines.flexible_system.mean_compression`),
-        the groups of one ball law in a single integration: a Monte Carlo's draws, each a ball
-        of its own, cost one."""
-        rows: dict[type, list] = {}  # law class -> [(group, law, mass, speeds)]
-        for g, members in enumerate(groups):
-            j = jobs[members[0]]
-            bat, ball, pivot, support = j.bat, j.ball, j.pivot, j.support
-            batch = passes.concatenate([jobs[i].batch for i in members])
-            z = pivot + batch.impact_location
-            recoil = rigid.recoil_factor(bat, ball.mass, pivot, batch.impact_location, support)
-            _, _, scale = surface(self.system_settings(), bat, ball, z)
-            equal = batch.relative_speed / np.sqrt((1.0 + recoil) * scale)
-            rows.setdefault(type(ball.law), []).append((g, ball.law, float(ball.mass), equal))
-        out: list[np.ndarray] = [np.empty(0)] * len(groups)
-        for parts in rows.values():
-            distinct: dict[tuple, int] = {}
-            which = np.concatenate([np.full(p[3].size, distinct.setdefault((p[1], p[2]),
-                                                                           len(distinct)))
-                                    for p in parts])
-            u = wall_mean_compression(list(distinct), which, np.concatenate([p[3] for p in parts]))
-            start = 0
-            for g, _, _, equal in parts:
-                out[g] = u[start:start + equal.size]
-                start += equal.size
-        return out
 
     @staticmethod
     def _alike(jobs: list[Job]) -> dict[tuple, list[int]]:

@@ -43,6 +43,7 @@ class SystemSettings:
     contact_surface: str
     contact_patch: bool
     patch_points: int
+    footprint: str = "fe-finite-strain"  # the footprint rule (footprint_rules.RULES)
 
 
 @dataclass(frozen=True)
@@ -100,13 +101,15 @@ class Patch:
     scale: np.ndarray  # the ball law's stiffness factor on that surface [-], (p,)
     compression: np.ndarray  # u_rep [m], (p,)
     ball_radius: float  # [m]
+    rule: str = "hertz"  # the footprint rule (footprint_rules.RULES)
 
     def half_angle(self, compression) -> np.ndarray:
         """Half-angle [rad] of the footprint around the barrel at ``compression`` [m]:
         ``b(u) / R``, at most pi/2 (on a flat surface: Hertz's circle of the same size)."""
         u = np.asarray(compression, dtype=float)
         extra = (1,) * (u.ndim - 1)  # (p, grid): every impact's grid of compressions
-        _, around = footprint.ellipse(self.ball_radius, self.surface.reshape(-1, *extra), u)
+        _, around = footprint.ellipse(self.ball_radius, self.surface.reshape(-1, *extra), u,
+                                      self.rule)
         return np.minimum(around / self.radius.reshape(-1, *extra), 0.5 * np.pi)
 
 
@@ -126,11 +129,74 @@ def mean_compression(ball: BallModel, speed, recoil, scale) -> np.ndarray:
 
 def surface(s: SystemSettings, bat: BatModel, ball: BallModel, z: np.ndarray):
     """The bat's outer radius at each impact [m], the contact surface's radius (inf: flat)
-    and the ball law's stiffness factor on it [-]."""
+    and the ball law's stiffness factor on it [-] in the small-compression limit (Hertz's;
+    :func:`scale_at` at the impact's compression)."""
     radius = 0.5 * np.asarray(bat.outer_diameter, dtype=float)[bat.slice_at(z)]
     on = radius if s.contact_surface == "cylinder" else np.full(z.size, np.inf)
     scale = np.asarray(footprint.stiffness_ratio(ball.radius, on), dtype=float)
     return radius, on, np.broadcast_to(scale, z.shape).copy()
+
+
+def scale_at(rule: str, ball: BallModel, on: np.ndarray, compression) -> np.ndarray:
+    """The ball law's stiffness factor on the surfaces ``on`` [-] at the compressions ``u_rep``
+    [m] (the footprint rule's, :func:`~batcert.physics.balls.footprint.stiffness_ratio`): the
+    factor is held over an impact, at the compression where its footprint is taken."""
+    return np.asarray(footprint.stiffness_ratio(ball.radius, on, compression, rule),
+                      dtype=float).reshape(np.shape(on))
+
+
+def patch_compression(rule: str, ball: BallModel, on: np.ndarray, scale0: np.ndarray,
+                      speed, recoil) -> tuple[np.ndarray, np.ndarray]:
+    """``u_rep`` [m] and the stiffness factor there [-] of each impact: :func:`mean_compression`
+    with Hertz's factor ``scale0``, the rule's factor there, and ``u_rep`` again with it (one
+    fixed-point pass: the factor moves ``u_rep`` by a few per cent, which moves the factor by
+    a few tenths of one). With the footprint ``rule`` ``hertz``: ``u_rep`` with ``scale0``.
+    The rigid engine takes its factor here too."""
+    u = mean_compression(ball, speed, recoil, scale0)
+    if rule == "hertz":
+        return u, scale0
+    u = mean_compression(ball, speed, recoil, scale_at(rule, ball, on, u))
+    return u, scale_at(rule, ball, on, u)
+
+
+def group_compressions(s: SystemSettings, jobs: list, groups: list[list[int]]) -> list[np.ndarray]:
+    """Each group's ``u_rep`` (:func:`patch_compression`; ``jobs``: the engine's jobs, ``groups``:
+    lists of their indices sharing bat, ball, pivot and support), the groups of one ball law
+    in a single integration per pass: a Monte Carlo's draws, each a ball of its own, cost one."""
+    from batcert.engines import passes
+    setup = []  # per group: ball, speed, recoil, surface radius, Hertz's factor
+    for members in groups:
+        j = jobs[members[0]]
+        batch = passes.concatenate([jobs[i].batch for i in members])
+        z = j.pivot + batch.impact_location
+        recoil = rigid.recoil_factor(j.bat, j.ball.mass, j.pivot, batch.impact_location, j.support)
+        _, on, scale = surface(s, j.bat, j.ball, z)
+        setup.append((j.ball, batch.relative_speed, recoil, on, scale))
+    u = _wall_compressions(setup, [g[4] for g in setup])
+    if s.footprint == "hertz":
+        return u
+    return _wall_compressions(setup, [scale_at(s.footprint, g[0], g[3], ug)
+                                      for g, ug in zip(setup, u, strict=True)])
+
+
+def _wall_compressions(setup: list, scales: list[np.ndarray]) -> list[np.ndarray]:
+    """:func:`mean_compression` of every group of ``setup`` with its ``scales``, one
+    integration per ball law."""
+    rows: dict[type, list] = {}  # law class -> [(group, law, mass, speeds)]
+    for g, ((ball, speed, recoil, _, _), scale) in enumerate(zip(setup, scales, strict=True)):
+        equal = speed / np.sqrt((1.0 + recoil) * scale)
+        rows.setdefault(type(ball.law), []).append((g, ball.law, float(ball.mass), equal))
+    out: list[np.ndarray] = [np.empty(0)] * len(setup)
+    for parts in rows.values():
+        distinct: dict[tuple, int] = {}
+        which = np.concatenate([np.full(p[3].size, distinct.setdefault((p[1], p[2]), len(distinct)))
+                                for p in parts])
+        u = wall_mean_compression(list(distinct), which, np.concatenate([p[3] for p in parts]))
+        start = 0
+        for g, _, _, equal in parts:
+            out[g] = u[start:start + equal.size]
+            start += equal.size
+    return out
 
 
 def patch_of(s: SystemSettings, bat: BatModel, ball: BallModel, z: np.ndarray,
@@ -140,17 +206,21 @@ def patch_of(s: SystemSettings, bat: BatModel, ball: BallModel, z: np.ndarray,
     ratio ``k`` at each impact; ``compression``: ``u_rep`` when already known)."""
     edges = np.asarray(bat.z_edges, dtype=float)
     radius, on, scale = surface(s, bat, ball, z)
-    u_rep = (mean_compression(ball, speed, recoil, scale) if compression is None
-             else np.asarray(compression, dtype=float))
-    along, _ = footprint.ellipse(ball.radius, on, u_rep)
+    if compression is None:
+        u_rep, scale = patch_compression(s.footprint, ball, on, scale, speed, recoil)
+    else:
+        u_rep = np.asarray(compression, dtype=float)
+        scale = scale_at(s.footprint, ball, on, u_rep)
+    along, _ = footprint.ellipse(ball.radius, on, u_rep, s.footprint)
     if not s.contact_patch:
-        return Patch(z[:, None], np.ones((z.size, 1)), radius, on, scale, u_rep, ball.radius)
+        return Patch(z[:, None], np.ones((z.size, 1)), radius, on, scale, u_rep, ball.radius,
+                     s.footprint)
     # keep the patch centred on the impact point: shrink it near the bat's ends
     half = np.minimum(along, np.minimum(z - edges[0], edges[-1] - z))
     xi, w = footprint.axial_weights(s.patch_points)
     points = z[:, None] + half[:, None] * xi[None, :]
     return Patch(points, np.broadcast_to(w, points.shape), radius, on, scale, u_rep,
-                 ball.radius)
+                 ball.radius, s.footprint)
 
 
 def linear_system(s: SystemSettings, bat: BatModel, ball: BallModel, pivot: float,

@@ -8,6 +8,8 @@ from batcert.engines.base import ImpactBatch, ImpactOutcome, Job
 from batcert.physics import rigid
 from batcert.physics.ball import BallModel
 from batcert.physics.balls import LAWS, footprint
+from batcert.physics.balls.footprint_rules import DEFAULT_RULE
+from batcert.physics.balls.footprint_rules import rule as footprint_rule
 from batcert.physics.batmodel import BatModel
 
 BALL_LOSS = ("compression", "relative-speed")
@@ -25,7 +27,9 @@ class RigidEngine:
     (``ball_loss="compression"``, as the flexible engine), or at the relative speed itself
     (``"relative-speed"``); for the viscoelastic ball the integrated impact
     (:mod:`batcert.physics.balls.impact1d`, on the bat's round surface unless
-    ``contact_surface="flat"``, as the flexible engine).
+    ``contact_surface="flat"``, as the flexible engine), its stiffness scaled on the barrel by
+    the factor of the footprint rule (``footprint``, as the flexible engine: at the impact's
+    ``u_rep``, :func:`~batcert.engines.flexible_system.patch_compression`).
     """
 
     name = "rigid"
@@ -38,13 +42,15 @@ class RigidEngine:
                           "reflects the ball's lower loss when it compresses less against a "
                           "recoiling bat; use the flexible engine for a meaningful BPF"}
 
-    def __init__(self, ball_loss: str = "compression", contact_surface: str = "cylinder") -> None:
+    def __init__(self, ball_loss: str = "compression", contact_surface: str = "cylinder",
+                 footprint: str = DEFAULT_RULE) -> None:
         if ball_loss not in BALL_LOSS:
             raise ValueError(f"ball_loss must be one of {BALL_LOSS}, got {ball_loss!r}")
         if contact_surface not in CONTACT_SURFACES:
             raise ValueError(f"contact_surface must be one of {CONTACT_SURFACES}, got "
                              f"{contact_surface!r}")
         self.ball_loss, self.contact_surface = ball_loss, contact_surface
+        self.footprint = footprint_rule(footprint).name
 
     def settings(self, bat: BatModel | None = None) -> dict:
         return {"engine": "rigid", "cor": (
@@ -52,8 +58,9 @@ class RigidEngine:
             "hysteresis: its rigid-wall COR at " + (
                 "the wall speed of equal compression, v_rel / sqrt(1 + k))"
                 if self.ball_loss == "compression" else "the relative speed)")),
-            "contact_surface": ("the barrel's cylinder (Hertz's stiffness factor)"
-                                if self.contact_surface == "cylinder" else "flat")}
+            "contact_surface": ("the barrel's cylinder (stiffness factor of the footprint rule)"
+                                if self.contact_surface == "cylinder" else "flat"),
+            "footprint": footprint_rule(self.footprint).title}
 
     def solve_many(self, jobs: list[Job]) -> list[ImpactOutcome]:
         """Closed forms cost nothing per call: :meth:`solve` for each job (a given job's
@@ -67,12 +74,26 @@ class RigidEngine:
         k = rigid.recoil_factor(bat, ball.mass, pivot, r, support)
         scale: float | np.ndarray = 1.0
         if self.contact_surface == "cylinder":
-            scale = footprint.stiffness_ratio(ball.radius,
-                                              0.5 * bat.outer_diameter[bat.slice_at(r + pivot)])
+            scale = self._scale(ball, 0.5 * bat.outer_diameter[bat.slice_at(r + pivot)],
+                                batch.relative_speed, k)
         e = _body_cor(ball, batch.relative_speed, k, scale, self.ball_loss)
         vb = rigid.exit_speed(e, k, vp, w1 * r)
         w2, cor = rigid.momentum_outcome(bat, ball.mass, pivot, support, r, vp, w1, vb, k)
         return ImpactOutcome(exit_speed=vb, bat_angular_speed_after=w2, cor=cor, recoil_factor=k)
+
+    def _scale(self, ball: BallModel, on: np.ndarray, speed, recoil) -> np.ndarray:
+        """The ball law's stiffness factor on the barrels ``on`` [m] [-]: the footprint rule's
+        at each impact's ``u_rep``, as the flexible engine (Hertz's for the rule ``hertz`` and
+        for a law whose COR does not see the surface, Nathan's)."""
+        from batcert.engines.flexible_system import patch_compression
+
+        scale = np.asarray(footprint.stiffness_ratio(ball.radius, on), dtype=float)
+        if self.footprint == "hertz" or LAWS[ball.law.name].closed_form_cor:
+            return scale
+        speed, recoil = np.broadcast_arrays(np.asarray(speed, float), np.asarray(recoil, float))
+        on = np.broadcast_to(np.asarray(on, float), speed.shape)
+        return patch_compression(self.footprint, ball, on, np.broadcast_to(scale, speed.shape),
+                                 speed, recoil)[1]
 
 
 def _body_cor(ball: BallModel, speed, recoil, scale, rule: str) -> np.ndarray:

@@ -232,8 +232,10 @@ def test_free_bat_reports_the_cor_it_used_and_conserves_momentum():
 def test_viscoelastic_ball_on_a_rigid_bat_is_its_integrated_impact():
     """RigidEngine with the viscoelastic law: the COR it reports is the ball's integrated
     impact on a rigid body of the bat's effective mass (Eq. 3), on the bat's round surface
-    (Hertz's factor); a heavier effective mass (impacts near the pivot) gives a COR nearer the
-    rigid wall's; Eq. 1 holds."""
+    (the footprint rule's factor at the impact's u_rep, Hertz's with the rule "hertz"); a
+    heavier effective mass (impacts near the pivot) gives a COR nearer the rigid wall's; Eq. 1
+    holds."""
+    from batcert.engines.flexible_system import patch_compression
     from batcert.physics.balls import footprint
 
     bat = build_geometry("rod", "solid", 0.84, [0.0, 0.84], [0.066, 0.066], LIBRARY["ash"][0])
@@ -243,9 +245,15 @@ def test_viscoelastic_ball_on_a_rigid_bat_is_its_integrated_impact():
     batch = ImpactBatch(r, np.full(r.size, -60.0), 0.0)
     out = get_engine("rigid").solve(bat, ball, pivot, batch)
     k = ball.mass * r**2 / bat.moi_about(pivot)
-    gamma = footprint.stiffness_ratio(ball.radius, 0.033)
-    expected = law.body_impact(ball.mass, 60.0, k, history=False, scale=gamma).cor
+    hertz = footprint.stiffness_ratio(ball.radius, 0.033)
+    on, speed = np.full(r.size, 0.033), np.full(r.size, 60.0)
+    gamma = patch_compression("fe-finite-strain", ball, on, np.full(r.size, hertz), speed, k)[1]
+    assert np.all(gamma < hertz)
+    expected = law.body_impact(ball.mass, speed, k, history=False, scale=gamma).cor
     np.testing.assert_allclose(out.cor, expected, rtol=1e-12)
+    old = get_engine("rigid", footprint="hertz").solve(bat, ball, pivot, batch).cor
+    expected = law.body_impact(ball.mass, 60.0, k, history=False, scale=hertz).cor
+    np.testing.assert_allclose(old, expected, rtol=1e-12)
     flat = get_engine("rigid", contact_surface="flat").solve(bat, ball, pivot, batch).cor
     assert np.all(flat != out.cor)  # the round surface matters for this law
     lhs = bat.moi_about(pivot) * 0.0 + ball.mass * -60.0 * r

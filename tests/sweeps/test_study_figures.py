@@ -81,15 +81,19 @@ def test_rigid_sweet_spot_of_the_figure_is_eq7(replay):
         assert b.series["cop"] == [mass[b.label].cop] * 13
 
 
-def _rigid_exit_speed(r, moi: float, w1: float, law, pitch: float = -31.0):
+def _rigid_exit_speed(r, moi: float, w1: float, ball, radius, pitch: float = -31.0):
     """The rigid pinned bat's exit speed at ``r`` [m from pivot], by hand (module docstring):
-    the ball's COR against a rigid body of the bat's effective-mass ratio on its barrel (the
-    bats' 2 5/8 in barrels, Hertz's stiffness factor for that cylinder)."""
+    the ball's COR against a rigid body of the bat's effective-mass ratio on its surface of
+    outer ``radius`` at ``r`` [m] (the footprint rule's stiffness factor for that cylinder at
+    the impact's u_rep, engines/flexible_system.patch_compression, as both engines take it)."""
+    from batcert.engines.flexible_system import patch_compression
     from batcert.physics.balls import footprint
 
     k = BALL_MASS * r * r / moi
-    scale = footprint.stiffness_ratio(0.0369, 0.5 * 2.625 * 0.0254)
-    e = law.body_impact(BALL_MASS, w1 * r - pitch, k, history=False, scale=scale).cor
+    hertz = np.asarray(footprint.stiffness_ratio(0.0369, radius), dtype=float)
+    speed = w1 * r - pitch
+    scale = patch_compression("fe-finite-strain", ball, radius, hertz, speed, k)[1]
+    e = ball.law.body_impact(BALL_MASS, speed, k, history=False, scale=scale).cor
     e_a = (e - k) / (1 + k)
     return e_a * -pitch + (1 + e_a) * w1 * r
 
@@ -108,21 +112,28 @@ def test_rigid_sweet_spot_is_the_maximum_of_the_closed_form(replay):
     p = replay.protocol(PID)
     lo, hi = 0.860 - p.pivot - 0.30, 0.860 - p.pivot - 0.03
     assert all(b.length == 0.860 for b in replay.bats)
-    law = load_protocol_any(str(BPF_SWEET)).ball.model.law
+    ball = load_protocol_any(str(BPF_SWEET)).ball.model
     grid = np.arange(lo, hi + 1e-9, 0.25e-3)
     inside = 0
     for b in _figure(replay, "sweet-spot-swing-speed").bats:
         moi = p.mass[b.label].moi_pivot
+        bat = load_bat_any("ash-34" if "Ash" in b.label else "aluminium-34").built.model
+        radius = 0.5 * np.asarray(bat.outer_diameter, dtype=float)[bat.slice_at(grid + p.pivot)]
         for w1, got, eq7 in zip(b.values, b.series["sweet_spot"], b.series["rigid_sweet_spot"],
                                 strict=True):
-            v = _rigid_exit_speed(grid, moi, w1, law)
+            v = _rigid_exit_speed(grid, moi, w1, ball, radius)
             i = int(np.argmax(v))
             if 0 < i < grid.size - 1:
                 a, c = v[i - 1] - v[i], v[i + 1] - v[i]
                 best = grid[i] + 0.25e-3 * 0.5 * (a - c) / (a + c)
             else:
                 best = grid[i]
-            assert got == pytest.approx(best, abs=2e-4), (b.label, w1)
+            # where the exit speed rises by under 0.2 m/s from the inner edge (the ash bat at 25
+            # rad/s: 0.10 m/s) its maximum is ill-conditioned: the finite-strain stiffness factor
+            # at u_rep (read off the ball's wall table by the engine at its few probe points,
+            # here at every grid point) moves it by 8 mm (measured); 1 cm there
+            flat = v.max() - v[0] < 0.2
+            assert got == pytest.approx(best, abs=0.01 if flat else 2e-4), (b.label, w1)
             if lo + 1e-6 < got < hi - 1e-6:
                 inside += 1
                 assert abs(got - eq7) < 0.03, (b.label, w1)

@@ -20,9 +20,11 @@ The engine (:mod:`batcert.engines.flexible`) spreads the contact force over this
 grows and shrinks with the compression: along the bat with the parabolic weight
 (:func:`axial_weights`), around it through the factor :func:`circumferential_factor` of each
 shell order. Hertz's theory holds for small deformations of a homogeneous sphere; a baseball
-compressed by 15 mm (40 % of its radius) is far from that, so the footprint is the model's
-assumption there; the 3-D finite-element check and the sensitivity to the footprint's size are
-in docs/validation.md. Units: SI ([m]).
+compressed by 15 mm (40 % of its radius) is far from that: a footprint rule
+(:mod:`batcert.physics.balls.footprint_rules`, the ``rule`` argument below) multiplies Hertz's
+semi-axes and stiffness factor by those of a 3-D finite-strain finite-element sphere
+(``fe-finite-strain``, the engine's default) or keeps Hertz's (``hertz``, the default of these
+functions); the checks against the FE are in docs/validation.md. Units: SI ([m]).
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ import math
 import numpy as np
 
 from batcert import workspace
+from batcert.physics.balls.footprint_rules import rule as _rule
 
 
 def elliptic_integrals(m):
@@ -92,10 +95,27 @@ def _distinct(a: np.ndarray) -> list[float]:
     return sorted(set(np.asarray(a, dtype=float).ravel().tolist()))
 
 
-def ellipse(ball_radius: float, surface_radius, compression):
-    """Semi-axes of the Hertz footprint [m]: ``a`` along the cylinder's axis, ``b`` around it
-    (module notes). ``surface_radius`` [m]: the barrel's outer radius, a scalar or one per
-    impact (``inf`` for a flat); ``compression`` [m], any shape broadcasting with it."""
+def ellipse(ball_radius: float, surface_radius, compression, rule: str = "hertz"):
+    """Semi-axes of the footprint [m]: ``a`` along the cylinder's axis, ``b`` around it
+    (module notes): Hertz's, times the factors of the footprint ``rule``
+    (:data:`~batcert.physics.balls.footprint_rules.RULES`; ``hertz``: none). ``surface_radius``
+    [m]: the barrel's outer radius, a scalar or one per impact (``inf`` for a flat);
+    ``compression`` [m], any shape broadcasting with it."""
+    a, b = hertz_ellipse(ball_radius, surface_radius, compression)
+    if rule == "hertz":
+        return a, b
+    u = np.maximum(np.asarray(compression, dtype=float), 0.0)
+    fa, fb = _rule(rule).size(u / ball_radius, _radius_ratio(ball_radius, surface_radius))
+    return a * fa, b * fb
+
+
+def _radius_ratio(ball_radius: float, surface_radius) -> np.ndarray:
+    """``R_b / R_c`` [-], 0 on a flat (``R_c`` infinite)."""
+    return ball_radius / np.asarray(surface_radius, dtype=float)
+
+
+def hertz_ellipse(ball_radius: float, surface_radius, compression):
+    """Semi-axes of the Hertz footprint [m] (:func:`ellipse` with the rule ``hertz``)."""
     u = np.maximum(np.asarray(compression, dtype=float), 0.0)
     rc = np.broadcast_to(np.asarray(surface_radius, dtype=float), np.broadcast(u, np.asarray(
         surface_radius, dtype=float)).shape)
@@ -112,11 +132,23 @@ def ellipse(ball_radius: float, surface_radius, compression):
     return a, b
 
 
-def stiffness_ratio(ball_radius: float, surface_radius) -> np.ndarray | float:
+def stiffness_ratio(ball_radius: float, surface_radius, compression=None,
+                    rule: str = "hertz") -> np.ndarray | float:
     """Force on a convex cylinder of radius ``surface_radius`` over the force on a flat at the
-    same compression, Hertz's ``pi a / (2 K(e) sqrt(R_b u))`` [-] (module notes): 1 for a flat,
-    0.84 for a 36.9 mm ball on a 2 5/8 in barrel. A ball law's stiffness refers to a flat rigid
-    wall (the COR and compression tests); the engine scales it by this on a barrel."""
+    same compression [-] (module notes): Hertz's ``pi a / (2 K(e) sqrt(R_b u))``, 1 for a flat,
+    0.84 for a 36.9 mm ball on a 2 5/8 in barrel, times the factor of the footprint ``rule`` at
+    ``compression`` [m] (broadcasting with ``surface_radius``; None: Hertz's, the
+    small-compression limit of every rule). A ball law's stiffness refers to a flat rigid wall
+    (the COR and compression tests); the engine scales it by this on a barrel."""
+    gamma = _hertz_stiffness_ratio(ball_radius, surface_radius)
+    if compression is None or rule == "hertz":
+        return gamma
+    u = np.maximum(np.asarray(compression, dtype=float), 0.0)
+    out = gamma * _rule(rule).stiffness(u / ball_radius, _radius_ratio(ball_radius, surface_radius))
+    return out if np.ndim(out) else float(out)
+
+
+def _hertz_stiffness_ratio(ball_radius: float, surface_radius) -> np.ndarray | float:
     rc = np.asarray(surface_radius, dtype=float)
     out = np.ones(rc.shape)
     for value in _distinct(rc):

@@ -218,3 +218,46 @@ def test_circumferential_factors_equal_the_factor_order_by_order():
     np.testing.assert_allclose(got, want, rtol=0, atol=1e-10)
     with pytest.raises(ValueError, match="ascending"):
         footprint.circumferential_factors([2, 0], beta)
+
+
+# -- footprint rules (physics/balls/footprint_rules.py) -------------------------------------
+def test_the_rules_registry():
+    from batcert.physics.balls.footprint_rules import DEFAULT_RULE, RULES, rule
+
+    assert set(RULES) == {"hertz", "fe-finite-strain"} and DEFAULT_RULE in RULES
+    assert all(rule(name).name == name for name in RULES)
+    with pytest.raises(ValueError, match="footprint must be one of"):
+        rule("Hertz")
+    with pytest.raises(ValueError, match="footprint must be one of"):
+        footprint.ellipse(BALL_RADIUS, BARREL_RADIUS, 1e-3, rule="fem")
+
+
+def test_the_hertz_rule_is_hertzs_footprint():
+    u = np.array([1e-4, 5e-3, 1.5e-2])
+    for surface in (np.inf, BARREL_RADIUS, 0.0286):
+        a, b = footprint.ellipse(BALL_RADIUS, surface, u, rule="hertz")
+        np.testing.assert_array_equal(np.stack([a, b]),
+                                      np.stack(footprint.hertz_ellipse(BALL_RADIUS, surface, u)))
+        assert np.all(footprint.stiffness_ratio(BALL_RADIUS, surface, u, rule="hertz")
+                      == footprint.stiffness_ratio(BALL_RADIUS, surface))
+
+
+def test_the_finite_strain_rule_tends_to_hertz_and_is_held_beyond_its_data():
+    # each factor is 1 + c1 sqrt(x) + c2 x (x = u / R_b): Hertz's at x -> 0, to 1e-3 at
+    # x = 1e-6 (|c1| < 1); held at x = 0.4 beyond the FE's compressions
+    from batcert.physics.balls.footprint_rules import FE_X_MAX
+
+    x = np.array([1e-6, FE_X_MAX, 0.6])
+    for surface in (np.inf, BARREL_RADIUS, 0.0286, 0.02):
+        h = np.stack(footprint.hertz_ellipse(BALL_RADIUS, surface, x * BALL_RADIUS))
+        f = np.stack(footprint.ellipse(BALL_RADIUS, surface, x * BALL_RADIUS, rule="fe-finite-strain"))
+        ratio = f / h
+        np.testing.assert_allclose(ratio[:, 0], 1.0, atol=1e-3)
+        np.testing.assert_allclose(ratio[:, 2], ratio[:, 1], rtol=1e-12)
+        s = np.asarray(footprint.stiffness_ratio(BALL_RADIUS, surface, x * BALL_RADIUS,
+                                                 rule="fe-finite-strain"))
+        s = s / footprint.stiffness_ratio(BALL_RADIUS, surface)
+        assert s[0] == pytest.approx(1.0, abs=1e-3) and s[2] == pytest.approx(s[1], rel=1e-12)
+    # a flat's stiffness factor is 1 by definition, whatever the compression
+    assert np.all(footprint.stiffness_ratio(BALL_RADIUS, np.inf, x * BALL_RADIUS,
+                                            rule="fe-finite-strain") == 1.0)

@@ -92,16 +92,16 @@ METRICS: dict[str, Metric] = {m.name: m for m in (
            "m/s", 2),
     Metric("besr", "BESR", "NCAA ball exit speed ratio, Smith 2001 Eq. 2 (assumes w2 = w1).",
            "besr", model_offset=(
-               "the model puts a 34 in ash bat at BESR 0.762 (101.6 mph) where the 97 mph cap "
-               "(0.728) was set from such bats: about +0.03 for wood, and alloy bats 0.04 above "
-               "ash (docs/validation.md, section 3)"), lab=True),
+               "the model puts a 34 in ash bat at BESR 0.730 where the 97 mph cap (0.728) was "
+               "set from such bats: +0.002 for wood, and alloy bats 0.02-0.03 above ash "
+               "(docs/validation.md, section 2)"), lab=True),
     Metric("bpf", "BPF", "Bat performance factor e / e_b, Smith 2001 Eq. 5 (w2 from Eq. 1).",
            "bpf", lab=True),
     Metric("bbcor", "BBCOR", "Ball-bat COR from the collision efficiency, e_A (1 + k) + k "
            "(ASTM F2219, NCAA).", "bbcor", model_offset=(
                "wood bats sit at the NCAA's wood level (0.490) because the ball lot is "
                "CALIBRATED on a wood reference bat there (a calibration, not a validation); "
-               "typical alloy bats come out 0.05-0.07 above wood, where certified alloy bats "
+               "typical alloy bats come out 0.03-0.06 above wood, where certified alloy bats "
                "measure at wood level (docs/validation.md, sections 2 and 3)"), lab=True),
     Metric("collision-efficiency", "collision efficiency e_A",
            "e_A = (v_b - v_bat) / (v_pitch + v_bat) (ASTM F2219).", "collision_efficiency",

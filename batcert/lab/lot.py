@@ -57,6 +57,7 @@ def with_session_lot(session: LabSession,
     _check_path(session, path)
     ref = load_lab_session(path)
     _check_reference(session, ref)
+    _check_pivot(session, ref, protocol)
     _, c = certify(ref, protocol)
     if c.value is None or c.location is None:
         raise spec.source.problem(FIELD, f"the reference bat's hits ({display_path(path)}) "
@@ -104,6 +105,20 @@ def _check_reference(session: LabSession, ref: LabSession) -> None:
         raise spec.source.problem(FIELD, f"ball {session.ball.name!r} has no law fitted to "
                                   "ball tests: a reference bat calibrates a lot along its fit "
                                   "(a viscoelastic law with its tests)")
+
+
+PIVOT_TOLERANCE = 1e-3  # [m] a reference's pivot may differ from the protocol's by this
+
+
+def _check_pivot(session: LabSession, ref: LabSession, protocol: ProtocolSpec) -> None:
+    """The reference's hits were taken at the protocol's pivot: the lot is calibrated on the
+    model of the protocol's test (its pivot), which a measurement about another pivot is not."""
+    if abs(ref.spec.pivot - protocol.pivot) > PIVOT_TOLERANCE:
+        raise session.spec.source.problem(
+            FIELD, f"the reference bat's hits were taken pivoted {ref.spec.pivot / 0.0254:.2f} "
+            f"in from the knob, and protocol {protocol.id!r} pivots at "
+            f"{protocol.pivot / 0.0254:.2f} in: the lot is calibrated on the protocol's test, "
+            "so the reference must be measured at its pivot")
 
 
 def _fitted(ball: BallSpec) -> bool:

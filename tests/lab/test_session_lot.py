@@ -107,6 +107,7 @@ REFERENCE_LINE = "reference_session: synthetic-reference-ash.yaml"
      "a reference session of its own"),
     (("", ""), ("hits: synthetic-reference-ash.csv", "hits: synthetic-reference-ash.csv\n"
                 "hits_required: 7"), "certify no BBCOR"),  # six hits a location
+    (("", ""), ("pivot: 6 in", "pivot: 7 in"), "must be measured at its pivot"),
 ])
 def test_a_reference_that_cannot_serve_is_an_input_error_at_its_line(tmp_path, bbcor, edit,
                                                                      ref_edit, message):

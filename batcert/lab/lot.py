@@ -22,10 +22,11 @@ from pathlib import Path
 from batcert.lab.certify import certify
 from batcert.lab.session import LabSession, load_lab_session
 from batcert.runner.lot import calibrated_lot
-from batcert.specs.ball import BallSpec, ReferenceBat, load_ball
+from batcert.specs.ball import ReferenceBat, load_ball
 from batcert.specs.protocol import ProtocolSpec
 from batcert.specs.resolve import display_path
 from batcert.specs.session import is_hits_csv
+from batcert.units import INCH
 
 FIELD = "reference_session"
 
@@ -47,8 +48,8 @@ def with_session_lot(session: LabSession,
     (module notes), and that reference; ``session`` itself and None when it names none. An
     input error at the session's ``reference_session`` line when the reference cannot serve:
     no such file, a hits CSV, the session itself, another ball file, a chain of references,
-    a ball law not fitted to ball tests, hits that certify no value, or a value no lot within
-    the bounds reaches."""
+    a ball law not fitted to ball tests, hits taken about another pivot than the protocol's,
+    hits that certify no value, or a value no lot within the bounds reaches."""
     spec = session.spec
     if spec.reference_session is None:
         return session, None
@@ -74,7 +75,7 @@ def with_session_lot(session: LabSession,
 
 def _source(ref: ReferenceSession, path: Path) -> str:
     return (f"measured: session {ref.session.spec.name!r} ({display_path(path)}), the mean of "
-            f"{ref.hits_used} hits {ref.location_from_tip / 0.0254:.2f} in from the tip")
+            f"{ref.hits_used} hits {ref.location_from_tip / INCH:.2f} in from the tip")
 
 
 def _check_path(session: LabSession, path: Path) -> None:
@@ -101,7 +102,7 @@ def _check_reference(session: LabSession, ref: LabSession) -> None:
                                   f"({display_path(ref.ball.path)}) is not this session's "
                                   f"({display_path(session.ball.path)}): a lot is calibrated "
                                   "on hits with its own balls")
-    if not _fitted(session.ball):
+    if session.ball.fit is None:
         raise spec.source.problem(FIELD, f"ball {session.ball.name!r} has no law fitted to "
                                   "ball tests: a reference bat calibrates a lot along its fit "
                                   "(a viscoelastic law with its tests)")
@@ -115,11 +116,7 @@ def _check_pivot(session: LabSession, ref: LabSession, protocol: ProtocolSpec) -
     model of the protocol's test (its pivot), which a measurement about another pivot is not."""
     if abs(ref.spec.pivot - protocol.pivot) > PIVOT_TOLERANCE:
         raise session.spec.source.problem(
-            FIELD, f"the reference bat's hits were taken pivoted {ref.spec.pivot / 0.0254:.2f} "
+            FIELD, f"the reference bat's hits were taken pivoted {ref.spec.pivot / INCH:.2f} "
             f"in from the knob, and protocol {protocol.id!r} pivots at "
-            f"{protocol.pivot / 0.0254:.2f} in: the lot is calibrated on the protocol's test, "
+            f"{protocol.pivot / INCH:.2f} in: the lot is calibrated on the protocol's test, "
             "so the reference must be measured at its pivot")
-
-
-def _fitted(ball: BallSpec) -> bool:
-    return ball.fit is not None

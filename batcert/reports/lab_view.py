@@ -13,9 +13,7 @@ from batcert.reports.figure import LineFigure
 from batcert.reports.svg import Point, Series, VLine
 from batcert.reports.table import Badge, Table
 from batcert.results.lab import CERTIFICATE_FIELDS, LabResult, certificate_values
-from batcert.units import FAST_UNITS
-
-INCH = 0.0254
+from batcert.units import FAST_UNITS, INCH
 
 
 def _v(x: float | None, digits: int = 4) -> str:

@@ -2,14 +2,9 @@
 
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
+from repo_script import load
 
-_PATH = Path(__file__).resolve().parents[1] / "benchmarks" / "compare_figures.py"
-_spec = importlib.util.spec_from_file_location("compare_figures", _PATH)
-assert _spec is not None and _spec.loader is not None
-compare_figures = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(compare_figures)
+compare_figures = load("benchmarks/compare_figures.py")
 
 
 def test_nested_numbers_get_paths_and_text_is_left_out():

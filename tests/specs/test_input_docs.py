@@ -2,18 +2,11 @@
 
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
-
-REPO = Path(__file__).resolve().parents[2]
+from repo_script import REPO, load
 
 
 def _generator():
-    spec = importlib.util.spec_from_file_location("gen_input_docs",
-                                                  REPO / "scripts" / "gen_input_docs.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load("scripts/gen_input_docs.py")
 
 
 def test_inputs_md_is_current():

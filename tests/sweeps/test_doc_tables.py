@@ -3,20 +3,12 @@ and must be current: a new sweep parameter is one registry entry, and its row fo
 
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
-
 import pytest
-
-REPO = Path(__file__).resolve().parents[2]
+from repo_script import REPO, load
 
 
 def _generator():
-    spec = importlib.util.spec_from_file_location("gen_doc_tables",
-                                                  REPO / "scripts" / "gen_doc_tables.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load("scripts/gen_doc_tables.py")
 
 
 def test_the_generated_tables_are_current():

@@ -34,20 +34,10 @@ def test_the_fe_reference_reproduces(tmp_path):
     # model (mesh, material, contact or its solution, the measures of the footprint) moves these
     # numbers by 1e-4 or more (the coarse mesh differs from M1 by 1e-3), so 1e-6 relative tells
     # the two apart. The contact-node counts must agree exactly.
-    pytest.importorskip("skfem")
-    import subprocess
-
-    out = tmp_path / "quick.json"
-    script = Path(__file__).resolve().parents[2] / "scripts" / "fe_ball_contact.py"
-    subprocess.run([sys.executable, str(script), "--quick", "--out", str(out)],
-                   check=True, capture_output=True, timeout=600)
-    run = json.loads(out.read_text())["quick"]["rows"]
+    run = _rerun(tmp_path, "fe_ball_contact.py", "--quick")["quick"]["rows"]
     rec = DATA["quick"]["rows"]
     assert [r["u_over_R"] for r in run] == [r["u_over_R"] for r in rec]
-    for r, ref in zip(run, rec, strict=True):
-        assert r["n_contact_nodes_quarter"] == ref["n_contact_nodes_quarter"], r["u_over_R"]
-        for name in ("F_N", "a_eq_mm", "b_eq_mm", "x_max_mm", "s_max_mm"):
-            assert r[name] == pytest.approx(ref[name], rel=1e-6), (r["u_over_R"], name)
+    _same_rows(run, rec, ("F_N", "a_eq_mm", "b_eq_mm", "x_max_mm", "s_max_mm"), 1e-6)
 
 
 @pytest.mark.slow
@@ -58,17 +48,29 @@ def test_the_finite_strain_fe_reference_reproduces(tmp_path):
     # the Newton tolerance (1e-7 of the load) bounds what a different path could move: 1e-5
     # relative tells a rerun from a change of the model (the Q3 and quick meshes differ by
     # 1e-3 or more). The contact-node counts must agree exactly.
+    run = _rerun(tmp_path, "fe_ball_contact_finite.py", "--smoke")["rows"]
+    rec = DATA["finite_strain"]["results"]["Q3"]["nu=0.30"]["cyl_2.625in"][:len(run)]
+    assert [r["u_over_R"] for r in run] == [r["u_over_R"] for r in rec] == [0.01, 0.02]
+    _same_rows(run, rec, ("F_N", "a_eq_mm", "b_eq_mm", "a_eq_undeformed_mm",
+                          "b_eq_undeformed_mm"), 1e-5)
+
+
+def _rerun(tmp_path, script: str, level: str) -> dict:
+    """The FE script ``scripts/SCRIPT`` run at ``level`` into a scratch file, its record."""
     pytest.importorskip("skfem")
     import subprocess
 
-    out = tmp_path / "smoke.json"
-    script = Path(__file__).resolve().parents[2] / "scripts" / "fe_ball_contact_finite.py"
-    subprocess.run([sys.executable, str(script), "--smoke", "--out", str(out)],
+    out = tmp_path / "rerun.json"
+    path = Path(__file__).resolve().parents[2] / "scripts" / script
+    subprocess.run([sys.executable, str(path), level, "--out", str(out)],
                    check=True, capture_output=True, timeout=600)
-    run = json.loads(out.read_text())["rows"]
-    rec = DATA["finite_strain"]["results"]["Q3"]["nu=0.30"]["cyl_2.625in"][:len(run)]
-    assert [r["u_over_R"] for r in run] == [r["u_over_R"] for r in rec] == [0.01, 0.02]
+    return json.loads(out.read_text())
+
+
+def _same_rows(run: list[dict], rec: list[dict], names: tuple[str, ...], rel: float) -> None:
+    """Each rerun row against its recorded one: the contact-node count exactly, the named
+    quantities to ``rel`` (each test says why)."""
     for r, ref in zip(run, rec, strict=True):
         assert r["n_contact_nodes_quarter"] == ref["n_contact_nodes_quarter"], r["u_over_R"]
-        for name in ("F_N", "a_eq_mm", "b_eq_mm", "a_eq_undeformed_mm", "b_eq_undeformed_mm"):
-            assert r[name] == pytest.approx(ref[name], rel=1e-5), (r["u_over_R"], name)
+        for name in names:
+            assert r[name] == pytest.approx(ref[name], rel=rel), (r["u_over_R"], name)

@@ -43,7 +43,9 @@ def _load_cli():
 
 
 def entry() -> None:
-    """The installed ``batcert`` command, ``python -m batcert`` and ``python -m batcert.cli``."""
+    """The installed ``batcert`` command and ``python -m batcert``. (``python -m batcert.cli``
+    starts at :func:`batcert.cli.base.entry`, without this guard and the BLAS setting: the
+    layer rule keeps the command line from importing this module.)"""
     previous = signal.signal(signal.SIGINT, _interrupted_while_loading)
     for name in ONE_THREAD:
         os.environ.setdefault(name, "1")
